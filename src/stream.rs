@@ -1,0 +1,542 @@
+//! The one streaming engine shared by every protocol.
+//!
+//! A protocol describes its framing through the [`Framing`] trait: where a frame
+//! may start, and — given the bytes from a candidate start — whether they are a
+//! frame of length `n`, not a frame, or not enough to tell yet. [`StreamDecoder`]
+//! does everything else, once, for all protocols:
+//!
+//! * **resync by one**: a failed candidate costs only its first byte; every byte
+//!   after it (including bytes that were buffered as its payload) is scanned
+//!   again, so a frame that began inside a failed candidate is never lost;
+//! * **zero-copy fast path**: a frame that lies wholly inside the caller's chunk is
+//!   parsed in place; only a frame that straddles two chunks is copied into the
+//!   fixed internal buffer of `N` bytes;
+//! * **explicit consumption**: [`StreamDecoder::decode`] advances the caller's
+//!   `&mut &[u8]` past exactly the bytes it has taken;
+//! * **chunking invariance**: the same input gives the same frames and the same
+//!   rejections however it is split, once [`StreamDecoder::finish`] has been called
+//!   at the end of the input;
+//! * **statistics** for watching link quality ([`Stats`]).
+//!
+//! The engine never allocates and every constructor is `const`, so a decoder can
+//! live in a `static`.
+
+use core::fmt;
+
+/// What a [`Framing`] says about the bytes that begin at a candidate start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Check<E> {
+    /// The bytes are a prefix of something that could still become a frame; the
+    /// answer cannot change before at least this many bytes (counted from the
+    /// candidate start) are available.
+    Need(usize),
+    /// A complete, valid frame of this many bytes starts here.
+    Frame(usize),
+    /// No frame starts here: the engine drops the candidate's first byte and
+    /// rescans everything after it.
+    Reject(E),
+}
+
+/// A protocol's framing rules: everything the engine needs to find frames.
+///
+/// Implementations must be *consistent*: once [`check`](Framing::check) has
+/// answered [`Check::Frame`] or [`Check::Reject`] for some bytes, it must give the
+/// same answer for any longer input that starts with those bytes (when `at_end`
+/// is false). The engine's chunking invariance rests on this.
+pub trait Framing {
+    /// Why a candidate was rejected or a frame could not be parsed.
+    type Error: Copy + fmt::Debug + Eq;
+    /// The typed message parsed from a valid frame; it may borrow the frame.
+    type Message<'a>;
+    /// An owned form of [`Message`](Framing::Message), for iterators and for
+    /// keeping a message after its bytes are gone.
+    type Owned;
+
+    /// The index of the first byte in `bytes` at which a frame could start, or
+    /// `bytes.len()` if none can. A start that cannot be confirmed from `bytes`
+    /// alone (a multi-byte sync word cut by the end of `bytes`) must be returned.
+    fn find_start(&self, bytes: &[u8]) -> usize;
+
+    /// Examine `candidate`, whose first byte was returned by
+    /// [`find_start`](Framing::find_start). `at_end` says no more bytes will
+    /// follow `candidate`, so [`Check::Need`] is then taken as truncation.
+    fn check(&self, candidate: &[u8], at_end: bool) -> Check<Self::Error>;
+
+    /// The error reported when the input ends inside a candidate of `len` bytes.
+    fn truncated(&self, len: usize) -> Self::Error;
+
+    /// Whether `error` is an integrity failure (counted in
+    /// [`Stats::checksum_errors`]).
+    fn is_checksum_error(&self, error: &Self::Error) -> bool;
+
+    /// Parse a frame that [`check`](Framing::check) accepted. An error here
+    /// consumes the frame (its integrity checked out, its contents did not).
+    fn parse<'a>(&self, frame: &'a [u8]) -> Result<Self::Message<'a>, Self::Error>;
+
+    /// Turn a parsed message into its owned form.
+    fn to_owned(message: Self::Message<'_>) -> Self::Owned;
+}
+
+/// A decoded frame: where it was in the stream, its bytes and its message.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frame<'a, M> {
+    /// Offset of the frame's first byte, counted from the first byte the decoder
+    /// was ever given.
+    pub offset: u64,
+    /// The frame's bytes on the wire.
+    pub raw: &'a [u8],
+    /// The typed message.
+    pub message: M,
+}
+
+impl<M> Frame<'_, M> {
+    /// The frame's length in bytes.
+    pub const fn len(&self) -> usize {
+        self.raw.len()
+    }
+
+    /// Always false: a frame has at least one byte. Present for API symmetry.
+    pub const fn is_empty(&self) -> bool {
+        self.raw.is_empty()
+    }
+}
+
+/// An owned decoded message with its place in the stream, as the
+/// [`Feed`] and [`Flush`] iterators yield it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Framed<M> {
+    /// Offset of the frame's first byte, as in [`Frame::offset`].
+    pub offset: u64,
+    /// The frame's length in bytes.
+    pub len: usize,
+    /// The typed message.
+    pub message: M,
+}
+
+/// A rejected candidate or an unparseable frame, with its stream offset.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Rejected<E> {
+    /// Offset of the candidate's first byte, as in [`Frame::offset`].
+    pub offset: u64,
+    /// What was wrong.
+    pub error: E,
+}
+
+impl<E: fmt::Display> fmt::Display for Rejected<E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "at byte {}: {}", self.offset, self.error)
+    }
+}
+
+impl<E: fmt::Display + fmt::Debug> core::error::Error for Rejected<E> {}
+
+/// One thing the decoder found: a frame, or a rejected candidate. Rejections are
+/// never fatal; the decoder has already moved past them.
+pub type Event<'a, M, E> = Result<Frame<'a, M>, Rejected<E>>;
+
+/// Link-quality counters. They always add up:
+/// `bytes == frame_bytes + skipped + buffered` (see [`StreamDecoder::buffered`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct Stats {
+    /// Bytes taken from the caller's input.
+    pub bytes: u64,
+    /// Frames that passed framing (parsed or not).
+    pub frames: u64,
+    /// Bytes that belonged to those frames.
+    pub frame_bytes: u64,
+    /// Bytes that belonged to no frame: garbage between frames and the first
+    /// byte of every rejected candidate.
+    pub skipped: u64,
+    /// Candidates rejected for a bad checksum.
+    pub checksum_errors: u64,
+    /// Candidates rejected for any other reason (unknown id, impossible length,
+    /// truncation at the end of input).
+    pub rejected: u64,
+    /// Frames whose integrity was fine but whose contents did not parse.
+    pub malformed: u64,
+}
+
+/// The protocol-neutral incremental decoder. `N` is the capacity of the internal
+/// buffer that holds a frame straddling two chunks; it must be at least the
+/// longest candidate the framing can ask for.
+#[derive(Debug, Clone)]
+pub struct StreamDecoder<F, const N: usize> {
+    framing: F,
+    buf: [u8; N],
+    /// Bytes of the current candidate held in `buf` (from previous inputs).
+    len: usize,
+    /// Bytes at the front of `buf` to drop before the next call: the frame that
+    /// the last returned event borrowed.
+    pending_drop: usize,
+    /// Stream offset of `buf[0]`.
+    buf_offset: u64,
+    /// The buffered candidate cannot resolve before it has this many bytes.
+    need: usize,
+    stats: Stats,
+}
+
+impl<F: Framing, const N: usize> StreamDecoder<F, N> {
+    /// A decoder with empty state using `framing`.
+    pub const fn new(framing: F) -> Self {
+        Self {
+            framing,
+            buf: [0; N],
+            len: 0,
+            pending_drop: 0,
+            buf_offset: 0,
+            need: 0,
+            stats: Stats {
+                bytes: 0,
+                frames: 0,
+                frame_bytes: 0,
+                skipped: 0,
+                checksum_errors: 0,
+                rejected: 0,
+                malformed: 0,
+            },
+        }
+    }
+
+    /// The framing rules in use.
+    pub const fn framing(&self) -> &F {
+        &self.framing
+    }
+
+    /// The counters so far.
+    pub const fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// Bytes held in the internal buffer as the start of an unfinished candidate.
+    pub const fn buffered(&self) -> usize {
+        self.len - self.pending_drop
+    }
+
+    /// Stream offset of the next byte the decoder will take.
+    pub const fn position(&self) -> u64 {
+        self.stats.bytes
+    }
+
+    /// Forget any buffered partial candidate (counting it as skipped) and keep
+    /// the counters and stream position.
+    pub fn clear(&mut self) {
+        self.apply_pending_drop();
+        self.stats.skipped += self.len as u64;
+        self.len = 0;
+        self.need = 0;
+    }
+
+    /// Take bytes from the front of `input` until an event is found or the input
+    /// is used up; `input` is advanced past every byte taken. Returns `None` when
+    /// all of `input` has been taken (a trailing partial frame is kept inside).
+    ///
+    /// Call it in a loop, `while let Some(event) = decoder.decode(&mut input)`.
+    pub fn decode<'a, 'i: 'a>(
+        &'a mut self,
+        input: &mut &'i [u8],
+    ) -> Option<Event<'a, F::Message<'a>, F::Error>> {
+        self.apply_pending_drop();
+        if self.len > 0 {
+            return self.decode_buffered(input);
+        }
+        self.decode_in_place(input)
+    }
+
+    /// Feed one byte (for interrupt handlers). The byte is always taken. It
+    /// completes at most one event; a rejection can reveal further events among
+    /// the bytes already buffered, so call [`poll`](Self::poll) until it returns
+    /// `None` before the next `push`.
+    pub fn push(&mut self, byte: u8) -> Option<Event<'_, F::Message<'_>, F::Error>> {
+        self.apply_pending_drop();
+        self.stats.bytes += 1;
+        if self.len == 0 {
+            if self.framing.find_start(&[byte]) > 0 {
+                self.stats.skipped += 1;
+                return None;
+            }
+            self.buf_offset = self.stats.bytes - 1;
+            self.need = 0;
+        }
+        // `len < N` holds between calls: a full buffer is always resolved.
+        self.buf[self.len] = byte;
+        self.len += 1;
+        self.decode_buffered(&mut &[][..])
+    }
+
+    /// Collect the events that need no further input (after [`push`](Self::push)
+    /// or a rejection): the same as [`decode`](Self::decode) with an empty input.
+    pub fn poll(&mut self) -> Option<Event<'_, F::Message<'_>, F::Error>> {
+        self.decode(&mut &[][..])
+    }
+
+    /// Decode a whole chunk: an iterator of owned events. Every byte of `input`
+    /// is taken once the iterator is exhausted (a trailing partial frame is
+    /// buffered). Dropping the iterator early leaves the untaken bytes
+    /// untaken: [`Feed::remaining`] tells which.
+    pub fn feed<'d, 'i>(&'d mut self, input: &'i [u8]) -> Feed<'d, 'i, F, N> {
+        Feed {
+            decoder: self,
+            input,
+        }
+    }
+
+    /// End of input as an iterator: the owned events of [`finish`](Self::finish).
+    pub fn flush(&mut self) -> Flush<'_, F, N> {
+        Flush { decoder: self }
+    }
+
+    /// Signal the end of the input: resolve whatever is buffered. Call it in a
+    /// loop until it returns `None`; the decoder is then empty and can take a new
+    /// stream (counters and position carry on).
+    pub fn finish(&mut self) -> Option<Event<'_, F::Message<'_>, F::Error>> {
+        self.apply_pending_drop();
+        if self.len == 0 {
+            return None;
+        }
+        let check = match self.framing.check(&self.buf[..self.len], true) {
+            Check::Need(_) => Check::Reject(self.framing.truncated(self.len)),
+            other => other,
+        };
+        match check {
+            Check::Frame(n) if n <= self.len && n > 0 => Some(self.emit_buffered(n)),
+            Check::Frame(_) | Check::Need(_) => {
+                Some(self.reject_buffered(self.framing.truncated(self.len)))
+            }
+            Check::Reject(e) => Some(self.reject_buffered(e)),
+        }
+    }
+
+    fn apply_pending_drop(&mut self) {
+        let n = self.pending_drop;
+        if n > 0 {
+            self.pending_drop = 0;
+            self.buf.copy_within(n..self.len, 0);
+            self.len -= n;
+            self.buf_offset += n as u64;
+            self.realign_buffer();
+        }
+    }
+
+    /// Make `buf[0]` a candidate start again after its front was removed.
+    fn realign_buffer(&mut self) {
+        let skip = self.framing.find_start(&self.buf[..self.len]);
+        if skip > 0 {
+            self.buf.copy_within(skip..self.len, 0);
+            self.len -= skip;
+            self.buf_offset += skip as u64;
+            self.stats.skipped += skip as u64;
+        }
+    }
+
+    fn decode_in_place<'a, 'i: 'a>(
+        &'a mut self,
+        input: &mut &'i [u8],
+    ) -> Option<Event<'a, F::Message<'a>, F::Error>> {
+        let data: &'i [u8] = input;
+        let mut pos = 0;
+        loop {
+            let skip = self.framing.find_start(&data[pos..]);
+            pos += skip;
+            self.stats.skipped += skip as u64;
+            if pos >= data.len() {
+                self.stats.bytes += data.len() as u64;
+                *input = &[];
+                return None;
+            }
+            let offset = self.stats.bytes + pos as u64;
+            match self.framing.check(&data[pos..], false) {
+                Check::Frame(n) if n > 0 && pos + n <= data.len() => {
+                    let raw = &data[pos..pos + n];
+                    let taken = pos + n;
+                    self.stats.bytes += taken as u64;
+                    *input = &data[taken..];
+                    return Some(self.parse(offset, raw));
+                }
+                Check::Frame(n) | Check::Need(n) if data.len() - pos < N => {
+                    let rest = &data[pos..];
+                    self.buf[..rest.len()].copy_from_slice(rest);
+                    self.len = rest.len();
+                    self.need = n.min(N);
+                    self.buf_offset = offset;
+                    self.stats.bytes += data.len() as u64;
+                    *input = &[];
+                    return None;
+                }
+                Check::Frame(_) | Check::Need(_) => {
+                    // The framing asks for more than the buffer holds: a framing
+                    // bug, but never a reason to stall. Treat it as a rejection.
+                    let error = self.framing.truncated(data.len() - pos);
+                    pos += 1;
+                    self.stats.skipped += 1;
+                    self.stats.rejected += 1;
+                    self.stats.bytes += pos as u64;
+                    *input = &data[pos..];
+                    return Some(Err(Rejected { offset, error }));
+                }
+                Check::Reject(error) => {
+                    self.count_rejection(&error);
+                    pos += 1;
+                    self.stats.skipped += 1;
+                    self.stats.bytes += pos as u64;
+                    *input = &data[pos..];
+                    return Some(Err(Rejected { offset, error }));
+                }
+            }
+        }
+    }
+
+    /// A candidate is buffered: add input bytes to it until it resolves.
+    fn decode_buffered<'a, 'i: 'a>(
+        &'a mut self,
+        input: &mut &'i [u8],
+    ) -> Option<Event<'a, F::Message<'a>, F::Error>> {
+        loop {
+            if self.len == 0 {
+                return self.decode_in_place(input);
+            }
+            let data: &'i [u8] = input;
+            let stored = self.len;
+            let take = data.len().min(N - stored);
+            if stored + take < self.need {
+                // Cannot resolve yet: store everything without asking.
+                self.buf[stored..stored + take].copy_from_slice(&data[..take]);
+                self.len += take;
+                self.stats.bytes += take as u64;
+                *input = &data[take..];
+                return None;
+            }
+            // Append input tentatively: bytes the candidate does not use are
+            // given back to the caller.
+            self.buf[stored..stored + take].copy_from_slice(&data[..take]);
+            let total = stored + take;
+            match self.framing.check(&self.buf[..total], false) {
+                Check::Frame(n) if n > 0 && n <= total => {
+                    let used = n.saturating_sub(stored);
+                    self.stats.bytes += used as u64;
+                    *input = &data[used..];
+                    // Any stored bytes past the frame stay buffered (possible
+                    // only after a rejection shifted the buffer).
+                    self.len = n.max(stored);
+                    return Some(self.emit_buffered(n));
+                }
+                Check::Frame(n) | Check::Need(n) if total < N => {
+                    self.stats.bytes += take as u64;
+                    *input = &data[take..];
+                    self.len = total;
+                    self.need = n.min(N);
+                    return None;
+                }
+                Check::Frame(_) | Check::Need(_) => {
+                    let error = self.framing.truncated(total);
+                    return Some(self.reject_buffered(error));
+                }
+                Check::Reject(error) => return Some(self.reject_buffered(error)),
+            }
+        }
+    }
+
+    /// Emit `buf[..n]` as a frame; it is dropped from the buffer on the next call.
+    fn emit_buffered(&mut self, n: usize) -> Event<'_, F::Message<'_>, F::Error> {
+        self.pending_drop = n;
+        self.need = 0;
+        let offset = self.buf_offset;
+        let (framing, stats) = (&self.framing, &mut self.stats);
+        let raw = &self.buf[..n];
+        parse_counted(framing, stats, offset, raw)
+    }
+
+    /// Reject the buffered candidate: drop its first byte only and realign on
+    /// the next candidate start among the stored bytes.
+    fn reject_buffered<'a>(&mut self, error: F::Error) -> Event<'a, F::Message<'a>, F::Error> {
+        let offset = self.buf_offset;
+        self.need = 0;
+        self.count_rejection(&error);
+        self.stats.skipped += 1;
+        self.buf.copy_within(1..self.len, 0);
+        self.len -= 1;
+        self.buf_offset += 1;
+        self.realign_buffer();
+        Err(Rejected { offset, error })
+    }
+
+    fn count_rejection(&mut self, error: &F::Error) {
+        if self.framing.is_checksum_error(error) {
+            self.stats.checksum_errors += 1;
+        } else {
+            self.stats.rejected += 1;
+        }
+    }
+
+    fn parse<'a>(&mut self, offset: u64, raw: &'a [u8]) -> Event<'a, F::Message<'a>, F::Error> {
+        parse_counted(&self.framing, &mut self.stats, offset, raw)
+    }
+}
+
+fn parse_counted<'a, F: Framing>(
+    framing: &F,
+    stats: &mut Stats,
+    offset: u64,
+    raw: &'a [u8],
+) -> Event<'a, F::Message<'a>, F::Error> {
+    stats.frames += 1;
+    stats.frame_bytes += raw.len() as u64;
+    match framing.parse(raw) {
+        Ok(message) => Ok(Frame {
+            offset,
+            raw,
+            message,
+        }),
+        Err(error) => {
+            stats.malformed += 1;
+            Err(Rejected { offset, error })
+        }
+    }
+}
+
+fn owned<F: Framing>(event: Event<'_, F::Message<'_>, F::Error>) -> OwnedEvent<F> {
+    event.map(|frame| Framed {
+        offset: frame.offset,
+        len: frame.raw.len(),
+        message: F::to_owned(frame.message),
+    })
+}
+
+/// The owned event type of framing `F`, as [`Feed`] and [`Flush`] yield it.
+pub type OwnedEvent<F> = Result<Framed<<F as Framing>::Owned>, Rejected<<F as Framing>::Error>>;
+
+/// Iterator over the events in one chunk; see [`StreamDecoder::feed`].
+#[derive(Debug)]
+pub struct Feed<'d, 'i, F, const N: usize> {
+    decoder: &'d mut StreamDecoder<F, N>,
+    input: &'i [u8],
+}
+
+impl<F, const N: usize> Feed<'_, '_, F, N> {
+    /// The bytes of the chunk not taken yet.
+    pub const fn remaining(&self) -> &[u8] {
+        self.input
+    }
+}
+
+impl<F: Framing, const N: usize> Iterator for Feed<'_, '_, F, N> {
+    type Item = OwnedEvent<F>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        self.decoder.decode(&mut self.input).map(owned::<F>)
+    }
+}
+
+/// Iterator over the events at the end of input; see [`StreamDecoder::flush`].
+#[derive(Debug)]
+pub struct Flush<'d, F, const N: usize> {
+    decoder: &'d mut StreamDecoder<F, N>,
+}
+
+impl<F: Framing, const N: usize> Iterator for Flush<'_, F, N> {
+    type Item = OwnedEvent<F>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        self.decoder.finish().map(owned::<F>)
+    }
+}
