@@ -1,17 +1,14 @@
 #![no_std]
-#![cfg_attr(docsrs, feature(doc_auto_cfg))]
+#![cfg_attr(docsrs, feature(doc_cfg))]
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
-//! robowire: `no_std`, allocation-free, sans-IO codecs for small robot serial
-//! protocols.
+#![doc = include_str!("../README.md")]
 
-#[cfg(test)]
-extern crate std;
-
+pub mod encode;
+pub mod omnitiles;
 pub mod stream;
 
-pub use stream::{Check, Event, Frame, Framing, Rejected, Stats, StreamDecoder};
-pub mod encode;
-
 pub use encode::{Encode, EncodeError, FrameBuf};
-pub use stream::{Feed, Flush, Framed, OwnedEvent};
+pub use stream::{
+    Check, Event, Feed, Flush, Frame, Framed, Framing, OwnedEvent, Rejected, Stats, StreamDecoder,
+};

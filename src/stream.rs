@@ -157,6 +157,19 @@ pub struct Stats {
     pub malformed: u64,
 }
 
+impl Stats {
+    /// Add another decoder's counters to these.
+    pub fn add(&mut self, other: &Stats) {
+        self.bytes += other.bytes;
+        self.frames += other.frames;
+        self.frame_bytes += other.frame_bytes;
+        self.skipped += other.skipped;
+        self.checksum_errors += other.checksum_errors;
+        self.rejected += other.rejected;
+        self.malformed += other.malformed;
+    }
+}
+
 /// The protocol-neutral incremental decoder. `N` is the capacity of the internal
 /// buffer that holds a frame straddling two chunks; it must be at least the
 /// longest candidate the framing can ask for.
@@ -334,56 +347,41 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         input: &mut &'i [u8],
     ) -> Option<Event<'a, F::Message<'a>, F::Error>> {
         let data: &'i [u8] = input;
-        let mut pos = 0;
-        loop {
-            let skip = self.framing.find_start(&data[pos..]);
-            pos += skip;
-            self.stats.skipped += skip as u64;
-            if pos >= data.len() {
+        let pos = self.framing.find_start(data);
+        self.stats.skipped += pos as u64;
+        if pos >= data.len() {
+            self.stats.bytes += data.len() as u64;
+            *input = &[];
+            return None;
+        }
+        let offset = self.stats.bytes + pos as u64;
+        let candidate = &data[pos..];
+        let error = match self.framing.check(candidate, false) {
+            Check::Frame(n) if n > 0 && n <= candidate.len() => {
+                self.stats.bytes += (pos + n) as u64;
+                *input = &data[pos + n..];
+                return Some(self.parse(offset, &candidate[..n]));
+            }
+            Check::Frame(n) | Check::Need(n) if candidate.len() < N => {
+                // Only a frame that straddles the end of the chunk is copied.
+                self.buf[..candidate.len()].copy_from_slice(candidate);
+                self.len = candidate.len();
+                self.need = n.min(N);
+                self.buf_offset = offset;
                 self.stats.bytes += data.len() as u64;
                 *input = &[];
                 return None;
             }
-            let offset = self.stats.bytes + pos as u64;
-            match self.framing.check(&data[pos..], false) {
-                Check::Frame(n) if n > 0 && pos + n <= data.len() => {
-                    let raw = &data[pos..pos + n];
-                    let taken = pos + n;
-                    self.stats.bytes += taken as u64;
-                    *input = &data[taken..];
-                    return Some(self.parse(offset, raw));
-                }
-                Check::Frame(n) | Check::Need(n) if data.len() - pos < N => {
-                    let rest = &data[pos..];
-                    self.buf[..rest.len()].copy_from_slice(rest);
-                    self.len = rest.len();
-                    self.need = n.min(N);
-                    self.buf_offset = offset;
-                    self.stats.bytes += data.len() as u64;
-                    *input = &[];
-                    return None;
-                }
-                Check::Frame(_) | Check::Need(_) => {
-                    // The framing asks for more than the buffer holds: a framing
-                    // bug, but never a reason to stall. Treat it as a rejection.
-                    let error = self.framing.truncated(data.len() - pos);
-                    pos += 1;
-                    self.stats.skipped += 1;
-                    self.stats.rejected += 1;
-                    self.stats.bytes += pos as u64;
-                    *input = &data[pos..];
-                    return Some(Err(Rejected { offset, error }));
-                }
-                Check::Reject(error) => {
-                    self.count_rejection(&error);
-                    pos += 1;
-                    self.stats.skipped += 1;
-                    self.stats.bytes += pos as u64;
-                    *input = &data[pos..];
-                    return Some(Err(Rejected { offset, error }));
-                }
-            }
-        }
+            // The framing asks for more than the buffer holds: a framing bug,
+            // but never a reason to stall.
+            Check::Frame(_) | Check::Need(_) => self.framing.truncated(candidate.len()),
+            Check::Reject(error) => error,
+        };
+        self.count_rejection(&error);
+        self.stats.skipped += 1;
+        self.stats.bytes += (pos + 1) as u64;
+        *input = &data[pos + 1..];
+        Some(Err(Rejected { offset, error }))
     }
 
     /// A candidate is buffered: add input bytes to it until it resolves.
@@ -391,48 +389,45 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         &'a mut self,
         input: &mut &'i [u8],
     ) -> Option<Event<'a, F::Message<'a>, F::Error>> {
-        loop {
-            if self.len == 0 {
-                return self.decode_in_place(input);
+        if self.len == 0 {
+            return self.decode_in_place(input);
+        }
+        let data: &'i [u8] = input;
+        let stored = self.len;
+        let take = data.len().min(N - stored);
+        // Append input tentatively: bytes the candidate does not use are given
+        // back to the caller.
+        self.buf[stored..stored + take].copy_from_slice(&data[..take]);
+        let total = stored + take;
+        if total < self.need {
+            // Cannot resolve yet: keep everything without asking the framing.
+            self.len = total;
+            self.stats.bytes += take as u64;
+            *input = &data[take..];
+            return None;
+        }
+        match self.framing.check(&self.buf[..total], false) {
+            Check::Frame(n) if n > 0 && n <= total => {
+                let used = n.saturating_sub(stored);
+                self.stats.bytes += used as u64;
+                *input = &data[used..];
+                // Stored bytes past the frame stay buffered (possible only
+                // after a rejection shifted the buffer).
+                self.len = n.max(stored);
+                Some(self.emit_buffered(n))
             }
-            let data: &'i [u8] = input;
-            let stored = self.len;
-            let take = data.len().min(N - stored);
-            if stored + take < self.need {
-                // Cannot resolve yet: store everything without asking.
-                self.buf[stored..stored + take].copy_from_slice(&data[..take]);
-                self.len += take;
+            Check::Frame(n) | Check::Need(n) if total < N => {
                 self.stats.bytes += take as u64;
                 *input = &data[take..];
-                return None;
+                self.len = total;
+                self.need = n.min(N);
+                None
             }
-            // Append input tentatively: bytes the candidate does not use are
-            // given back to the caller.
-            self.buf[stored..stored + take].copy_from_slice(&data[..take]);
-            let total = stored + take;
-            match self.framing.check(&self.buf[..total], false) {
-                Check::Frame(n) if n > 0 && n <= total => {
-                    let used = n.saturating_sub(stored);
-                    self.stats.bytes += used as u64;
-                    *input = &data[used..];
-                    // Any stored bytes past the frame stay buffered (possible
-                    // only after a rejection shifted the buffer).
-                    self.len = n.max(stored);
-                    return Some(self.emit_buffered(n));
-                }
-                Check::Frame(n) | Check::Need(n) if total < N => {
-                    self.stats.bytes += take as u64;
-                    *input = &data[take..];
-                    self.len = total;
-                    self.need = n.min(N);
-                    return None;
-                }
-                Check::Frame(_) | Check::Need(_) => {
-                    let error = self.framing.truncated(total);
-                    return Some(self.reject_buffered(error));
-                }
-                Check::Reject(error) => return Some(self.reject_buffered(error)),
+            Check::Frame(_) | Check::Need(_) => {
+                let error = self.framing.truncated(total);
+                Some(self.reject_buffered(error))
             }
+            Check::Reject(error) => Some(self.reject_buffered(error)),
         }
     }
 
@@ -494,7 +489,8 @@ fn parse_counted<'a, F: Framing>(
     }
 }
 
-fn owned<F: Framing>(event: Event<'_, F::Message<'_>, F::Error>) -> OwnedEvent<F> {
+/// Turn a borrowed event into its owned form (what [`Feed`] and [`Flush`] yield).
+pub fn owned_event<F: Framing>(event: Event<'_, F::Message<'_>, F::Error>) -> OwnedEvent<F> {
     event.map(|frame| Framed {
         offset: frame.offset,
         len: frame.raw.len(),
@@ -523,7 +519,7 @@ impl<F: Framing, const N: usize> Iterator for Feed<'_, '_, F, N> {
     type Item = OwnedEvent<F>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        self.decoder.decode(&mut self.input).map(owned::<F>)
+        self.decoder.decode(&mut self.input).map(owned_event::<F>)
     }
 }
 
@@ -537,6 +533,6 @@ impl<F: Framing, const N: usize> Iterator for Flush<'_, F, N> {
     type Item = OwnedEvent<F>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        self.decoder.finish().map(owned::<F>)
+        self.decoder.finish().map(owned_event::<F>)
     }
 }

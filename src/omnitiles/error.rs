@@ -1,0 +1,36 @@
+//! Why an OmniTiles candidate frame was rejected.
+
+/// A rejected OmniTiles candidate. Never fatal: the decoder has already
+/// dropped the candidate's start byte and carries on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The checksum byte does not match the sum of id and payload. For
+    /// telemetry with several layouts enabled it is the longest layout's
+    /// checksum that is reported.
+    #[error("checksum mismatch: expected {expected:#04x}, found {found:#04x}")]
+    Checksum {
+        /// The sum computed over id and payload.
+        expected: u8,
+        /// The checksum byte on the wire.
+        found: u8,
+    },
+    /// The byte after `0xA5` is not an id this decoder accepts (commands,
+    /// telemetry or both, as configured).
+    #[error("unknown or unaccepted message id {id:#04x}")]
+    UnknownId {
+        /// The id byte.
+        id: u8,
+    },
+    /// A telemetry candidate whose checksum validated at a shorter enabled
+    /// layout, but which no following frame header, end of input or longer
+    /// layout confirmed.
+    #[error("telemetry length could not be confirmed")]
+    Unconfirmed,
+    /// The input ended inside a candidate of this many bytes.
+    #[error("input ended inside a frame after {len} bytes")]
+    Truncated {
+        /// Bytes of the candidate that arrived.
+        len: usize,
+    },
+}

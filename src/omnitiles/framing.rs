@@ -1,0 +1,219 @@
+//! Where OmniTiles frames start and end in a byte stream.
+
+use super::command::{payload_len, Command};
+use super::layout::{Layout, Layouts};
+use super::telemetry::Telemetry;
+use super::{checksum, id, Error, Packet, START};
+use crate::stream::{self, Check};
+
+/// What an OmniTiles decoder accepts: commands (bytes from the host),
+/// telemetry in a set of layouts (bytes from the tile), or both.
+///
+/// # Telemetry length policy
+///
+/// Telemetry has no length byte and one id for every layout, so with several
+/// layouts enabled a candidate can validate at more than one length. The
+/// decoder tries the enabled lengths shortest first and accepts length `L`
+/// when the 8-bit sum validates at `L` **and** the length is confirmed:
+///
+/// * `L` is the longest enabled layout (emitted as soon as it is complete), or
+/// * the bytes after it begin another accepted frame (`a5` and an accepted id,
+///   e.g. `a5 60`), or
+/// * the input ends exactly at `L` (or at `L + 1` with a lone `a5`), which only
+///   [`finish`](crate::StreamDecoder::finish) can say.
+///
+/// A shorter frame therefore waits for two more bytes (the next header). With
+/// a single layout there is nothing to confirm: every frame is emitted as
+/// soon as it is complete. On a clean stream of any mix of the enabled layouts
+/// this gives no false and no lost frames; in noise, a short frame followed
+/// by garbage is dropped ([`Error::Unconfirmed`]) rather than guessed at.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Framing {
+    commands: bool,
+    layouts: Layouts,
+}
+
+impl Framing {
+    /// Accept commands and telemetry in the four documented layouts.
+    pub const ANY: Framing = Framing::any(Layouts::DOCUMENTED);
+
+    /// Accept commands only: a tile's view of the link (`--from host`).
+    pub const fn commands() -> Framing {
+        Framing {
+            commands: true,
+            layouts: Layouts::NONE,
+        }
+    }
+
+    /// Accept telemetry in `layouts` only: a host's view (`--from tile`).
+    pub const fn telemetry(layouts: Layouts) -> Framing {
+        Framing {
+            commands: false,
+            layouts,
+        }
+    }
+
+    /// Accept commands and telemetry in `layouts`.
+    pub const fn any(layouts: Layouts) -> Framing {
+        Framing {
+            commands: true,
+            layouts,
+        }
+    }
+
+    /// Whether commands are accepted.
+    pub const fn accepts_commands(&self) -> bool {
+        self.commands
+    }
+
+    /// The telemetry layouts accepted.
+    pub const fn layouts(&self) -> Layouts {
+        self.layouts
+    }
+
+    /// Whether `id` begins a frame this decoder accepts.
+    pub const fn accepts_id(&self, id: u8) -> bool {
+        if id == id::TELEMETRY {
+            !self.layouts.is_empty()
+        } else {
+            self.commands && payload_len(id).is_some()
+        }
+    }
+
+    /// Does what follows a telemetry candidate confirm its length?
+    /// `Some(true)` yes, `Some(false)` no, `None` cannot tell yet.
+    fn confirms(&self, rest: &[u8], at_end: bool) -> Option<bool> {
+        match rest {
+            [] if at_end => Some(true),
+            [] => None,
+            [START] if at_end => Some(true),
+            [START] => None,
+            [START, next, ..] => Some(self.accepts_id(*next)),
+            _ => Some(false),
+        }
+    }
+
+    fn check_telemetry(&self, c: &[u8], at_end: bool) -> Check<Error> {
+        let longest = match self.layouts.longest() {
+            Some(l) => l,
+            None => return Check::Reject(Error::UnknownId { id: id::TELEMETRY }),
+        };
+        let mut error = Error::Unconfirmed;
+        // Running sum over bytes 1.. so each length costs only its new bytes.
+        let mut sum: u8 = 0;
+        let mut summed = 1;
+        for layout in Layout::ALL {
+            if !self.layouts.contains(layout) {
+                continue;
+            }
+            let len = layout.frame_len();
+            if c.len() < len {
+                return if at_end {
+                    Check::Reject(Error::Truncated { len: c.len() })
+                } else {
+                    Check::Need(len)
+                };
+            }
+            sum = c[summed..len - 1]
+                .iter()
+                .fold(sum, |s, &b| s.wrapping_add(b));
+            summed = len - 1;
+            let found = c[len - 1];
+            if sum != found {
+                error = Error::Checksum {
+                    expected: sum,
+                    found,
+                };
+                continue;
+            }
+            if layout == longest {
+                return Check::Frame(len);
+            }
+            match self.confirms(&c[len..], at_end) {
+                Some(true) => return Check::Frame(len),
+                Some(false) => error = Error::Unconfirmed,
+                None => return Check::Need(len + 2),
+            }
+        }
+        Check::Reject(error)
+    }
+}
+
+impl Default for Framing {
+    fn default() -> Self {
+        Framing::ANY
+    }
+}
+
+impl stream::Framing for Framing {
+    type Error = Error;
+    type Message<'a> = Packet;
+    type Owned = Packet;
+
+    fn find_start(&self, bytes: &[u8]) -> usize {
+        memchr::memchr(START, bytes).unwrap_or(bytes.len())
+    }
+
+    fn check(&self, c: &[u8], at_end: bool) -> Check<Error> {
+        let Some(&id) = c.get(1) else {
+            return if at_end {
+                Check::Reject(Error::Truncated { len: c.len() })
+            } else {
+                Check::Need(2)
+            };
+        };
+        if id == id::TELEMETRY && !self.layouts.is_empty() {
+            return self.check_telemetry(c, at_end);
+        }
+        let n = match payload_len(id) {
+            Some(n) if self.commands => n,
+            _ => return Check::Reject(Error::UnknownId { id }),
+        };
+        let len = 3 + n;
+        if c.len() < len {
+            return if at_end {
+                Check::Reject(Error::Truncated { len: c.len() })
+            } else {
+                Check::Need(len)
+            };
+        }
+        let expected = checksum(&c[1..len - 1]);
+        let found = c[len - 1];
+        if expected == found {
+            Check::Frame(len)
+        } else {
+            Check::Reject(Error::Checksum { expected, found })
+        }
+    }
+
+    fn truncated(&self, len: usize) -> Error {
+        Error::Truncated { len }
+    }
+
+    fn is_checksum_error(&self, error: &Error) -> bool {
+        matches!(error, Error::Checksum { .. })
+    }
+
+    fn parse(&self, frame: &[u8]) -> Result<Packet, Error> {
+        parse_frame(frame)
+    }
+
+    fn to_owned(message: Packet) -> Packet {
+        message
+    }
+}
+
+/// Turn a frame that passed framing (start byte, accepted id, length and
+/// checksum already checked) into a packet.
+pub(crate) fn parse_frame(frame: &[u8]) -> Result<Packet, Error> {
+    let id = frame.get(1).copied().unwrap_or(0);
+    if id == id::TELEMETRY {
+        let layout = Layout::from_len(frame.len()).ok_or(Error::Truncated { len: frame.len() })?;
+        return Ok(Packet::Telemetry(Telemetry::parse(layout, frame)));
+    }
+    frame
+        .get(2..frame.len().saturating_sub(1))
+        .and_then(|payload| Command::from_parts(id, payload))
+        .map(Packet::Command)
+        .ok_or(Error::UnknownId { id })
+}

@@ -1,0 +1,176 @@
+//! Telemetry layouts: which fields a telemetry frame of a given length carries.
+
+/// One telemetry layout. All layouts share the id `0x60` and are told apart only
+/// by their total length (spec §4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Layout {
+    /// 7 bytes: motor positions (SDK variant, never emitted by firmware).
+    Pos7,
+    /// 15 bytes: positions and four UWB ranges (SDK variant).
+    Uwb15,
+    /// 17 bytes: positions, four UWB ranges and ToF (SDK variant).
+    UwbTof17,
+    /// 45 bytes: the STM32 → nRF SPI frame (positions, ToF, IMU, ADCs; no UWB).
+    Spi45,
+    /// 53 bytes: the BLE notification the current firmware emits (everything).
+    Ble53,
+}
+
+impl Layout {
+    /// Every layout, shortest first.
+    pub const ALL: [Layout; 5] = [
+        Layout::Pos7,
+        Layout::Uwb15,
+        Layout::UwbTof17,
+        Layout::Spi45,
+        Layout::Ble53,
+    ];
+
+    /// The frame's total length, start byte and checksum included.
+    pub const fn frame_len(self) -> usize {
+        match self {
+            Layout::Pos7 => 7,
+            Layout::Uwb15 => 15,
+            Layout::UwbTof17 => 17,
+            Layout::Spi45 => 45,
+            Layout::Ble53 => 53,
+        }
+    }
+
+    /// The layout of a frame of exactly `len` bytes, if any.
+    pub const fn from_len(len: usize) -> Option<Layout> {
+        match len {
+            7 => Some(Layout::Pos7),
+            15 => Some(Layout::Uwb15),
+            17 => Some(Layout::UwbTof17),
+            45 => Some(Layout::Spi45),
+            53 => Some(Layout::Ble53),
+            _ => None,
+        }
+    }
+
+    /// The short name used by the command-line tool and in JSON output.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Layout::Pos7 => "pos7",
+            Layout::Uwb15 => "uwb15",
+            Layout::UwbTof17 => "uwbtof17",
+            Layout::Spi45 => "spi45",
+            Layout::Ble53 => "ble53",
+        }
+    }
+
+    /// The layout with this [`name`](Self::name).
+    pub fn from_name(name: &str) -> Option<Layout> {
+        Layout::ALL.into_iter().find(|l| l.name() == name)
+    }
+
+    /// Whether the layout carries the four UWB ranges.
+    pub const fn has_uwb(self) -> bool {
+        matches!(self, Layout::Uwb15 | Layout::UwbTof17 | Layout::Ble53)
+    }
+
+    /// Whether the layout carries the ToF range.
+    pub const fn has_tof(self) -> bool {
+        !matches!(self, Layout::Pos7 | Layout::Uwb15)
+    }
+
+    /// Whether the layout carries the IMU sample and the ADC channels.
+    pub const fn has_imu_and_adcs(self) -> bool {
+        matches!(self, Layout::Spi45 | Layout::Ble53)
+    }
+
+    const fn bit(self) -> u8 {
+        1 << self as u8
+    }
+}
+
+impl core::fmt::Display for Layout {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A set of telemetry layouts a decoder accepts.
+///
+/// ```
+/// use robowire::omnitiles::{Layout, Layouts};
+/// let ble_only = Layouts::only(Layout::Ble53);
+/// assert!(ble_only.contains(Layout::Ble53));
+/// assert_eq!(Layouts::DOCUMENTED.len(), 4);
+/// assert_eq!(Layouts::DOCUMENTED.longest(), Some(Layout::Ble53));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Layouts(u8);
+
+impl Layouts {
+    /// No layout: telemetry is not accepted.
+    pub const NONE: Layouts = Layouts(0);
+    /// The four layouts the SDK documents (7, 15, 17, 53 bytes): the default.
+    pub const DOCUMENTED: Layouts = Layouts::NONE
+        .with(Layout::Pos7)
+        .with(Layout::Uwb15)
+        .with(Layout::UwbTof17)
+        .with(Layout::Ble53);
+    /// Every layout, the 45-byte SPI frame included.
+    pub const ALL: Layouts = Layouts::DOCUMENTED.with(Layout::Spi45);
+
+    /// Exactly one layout: every frame is then emitted as soon as it is complete.
+    pub const fn only(layout: Layout) -> Layouts {
+        Layouts(layout.bit())
+    }
+
+    /// This set with `layout` added.
+    pub const fn with(self, layout: Layout) -> Layouts {
+        Layouts(self.0 | layout.bit())
+    }
+
+    /// This set with `layout` removed.
+    pub const fn without(self, layout: Layout) -> Layouts {
+        Layouts(self.0 & !layout.bit())
+    }
+
+    /// Whether `layout` is in the set.
+    pub const fn contains(self, layout: Layout) -> bool {
+        self.0 & layout.bit() != 0
+    }
+
+    /// Number of layouts in the set.
+    pub const fn len(self) -> usize {
+        self.0.count_ones() as usize
+    }
+
+    /// Whether the set is empty.
+    pub const fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+
+    /// The longest layout in the set.
+    pub const fn longest(self) -> Option<Layout> {
+        let mut i = Layout::ALL.len();
+        while i > 0 {
+            i -= 1;
+            if self.contains(Layout::ALL[i]) {
+                return Some(Layout::ALL[i]);
+            }
+        }
+        None
+    }
+
+    /// The layouts in the set, shortest first.
+    pub fn iter(self) -> impl Iterator<Item = Layout> {
+        Layout::ALL.into_iter().filter(move |l| self.contains(*l))
+    }
+}
+
+impl Default for Layouts {
+    fn default() -> Self {
+        Layouts::DOCUMENTED
+    }
+}
+
+impl FromIterator<Layout> for Layouts {
+    fn from_iter<I: IntoIterator<Item = Layout>>(iter: I) -> Self {
+        iter.into_iter().fold(Layouts::NONE, Layouts::with)
+    }
+}

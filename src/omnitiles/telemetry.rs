@@ -1,0 +1,313 @@
+//! Telemetry: tile → host.
+
+use super::layout::Layout;
+use super::{checksum, id, START};
+use crate::encode::{check_room, Encode, EncodeError};
+
+/// The `u16` value that means "no reading" in positions, UWB ranges and ToF.
+pub const NO_READING: u16 = 0xFFFF;
+
+/// One IMU sample: acceleration in m/s² (gravity included) and angular rate in
+/// rad/s, in the sensor's frame.
+///
+/// Equality compares bit patterns, so a sample with NaNs equals itself and a
+/// decoded sample equals the one that was encoded, bit for bit.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Imu {
+    /// Acceleration along x, m/s².
+    pub ax: f32,
+    /// Acceleration along y, m/s².
+    pub ay: f32,
+    /// Acceleration along z, m/s² (≈ +9.8 at rest).
+    pub az: f32,
+    /// Angular rate about x, rad/s.
+    pub gx: f32,
+    /// Angular rate about y, rad/s.
+    pub gy: f32,
+    /// Angular rate about z, rad/s.
+    pub gz: f32,
+}
+
+impl Imu {
+    /// The six values in wire order: ax, ay, az, gx, gy, gz.
+    pub const fn to_array(self) -> [f32; 6] {
+        [self.ax, self.ay, self.az, self.gx, self.gy, self.gz]
+    }
+
+    /// A sample from six values in wire order.
+    pub const fn from_array([ax, ay, az, gx, gy, gz]: [f32; 6]) -> Imu {
+        Imu {
+            ax,
+            ay,
+            az,
+            gx,
+            gy,
+            gz,
+        }
+    }
+}
+
+impl PartialEq for Imu {
+    fn eq(&self, other: &Self) -> bool {
+        let (a, b) = (self.to_array(), other.to_array());
+        a.iter()
+            .zip(b.iter())
+            .all(|(x, y)| x.to_bits() == y.to_bits())
+    }
+}
+
+impl Eq for Imu {}
+
+/// A telemetry frame's contents.
+///
+/// Readings that can be missing are `Option`s: `None` is the wire's `0xFFFF`
+/// ("no reading": no feedback, anchor never measured, no ToF sensor). Groups
+/// that a layout does not carry are `None` one level up, so "not carried" and
+/// "no reading" stay distinct: `tof == None` means the layout has no ToF field,
+/// `tof == Some(None)` means the tile sent `0xFFFF`.
+///
+/// ```
+/// use robowire::omnitiles::{Layout, Telemetry};
+/// let t = Telemetry::from_frame(&[0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x22]).unwrap();
+/// assert_eq!(t.layout, Layout::Pos7);
+/// assert_eq!((t.m1_pos, t.m2_pos), (Some(2000), Some(1000)));
+/// assert_eq!(t.uwb, None); // not carried by the 7-byte layout
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Telemetry {
+    /// Which layout the frame had.
+    pub layout: Layout,
+    /// M1 position, raw 0..=4095 (see [`units::adc_to_mm`](super::units::adc_to_mm)).
+    pub m1_pos: Option<u16>,
+    /// M2 position, raw 0..=4095.
+    pub m2_pos: Option<u16>,
+    /// UWB ranges to anchors 0..=3 in mm (15, 17 and 53-byte layouts).
+    pub uwb: Option<[Option<u16>; 4]>,
+    /// ToF range in mm (17, 45 and 53-byte layouts).
+    pub tof: Option<Option<u16>>,
+    /// IMU sample (45 and 53-byte layouts).
+    pub imu: Option<Imu>,
+    /// M1's four potentiometer channels, raw 0..=4095 (45 and 53-byte layouts).
+    pub m1_adcs: Option<[u16; 4]>,
+    /// M2's two potentiometer channels, raw 0..=4095 (45 and 53-byte layouts).
+    pub m2_adcs: Option<[u16; 2]>,
+}
+
+/// Where each field group sits in a layout (offsets from the start byte).
+struct Offsets {
+    uwb: Option<usize>,
+    tof: Option<usize>,
+    imu: Option<usize>,
+    adcs: Option<usize>,
+}
+
+const fn offsets(layout: Layout) -> Offsets {
+    match layout {
+        Layout::Pos7 => Offsets {
+            uwb: None,
+            tof: None,
+            imu: None,
+            adcs: None,
+        },
+        Layout::Uwb15 => Offsets {
+            uwb: Some(6),
+            tof: None,
+            imu: None,
+            adcs: None,
+        },
+        Layout::UwbTof17 => Offsets {
+            uwb: Some(6),
+            tof: Some(14),
+            imu: None,
+            adcs: None,
+        },
+        Layout::Spi45 => Offsets {
+            uwb: None,
+            tof: Some(6),
+            imu: Some(8),
+            adcs: Some(32),
+        },
+        Layout::Ble53 => Offsets {
+            uwb: Some(6),
+            tof: Some(14),
+            imu: Some(16),
+            adcs: Some(40),
+        },
+    }
+}
+
+/// Bytes the M1 ADC channels take; M2's follow them.
+const M1_ADCS_LEN: usize = 8;
+
+fn u16_at(frame: &[u8], at: usize) -> u16 {
+    u16::from_le_bytes([frame[at], frame[at + 1]])
+}
+
+fn reading_at(frame: &[u8], at: usize) -> Option<u16> {
+    Some(u16_at(frame, at)).filter(|&v| v != NO_READING)
+}
+
+fn put_u16(out: &mut [u8], at: usize, value: u16) {
+    out[at..at + 2].copy_from_slice(&value.to_le_bytes());
+}
+
+/// Write a reading, refusing `Some(0xFFFF)`: it would come back as `None`.
+fn put_reading(
+    out: &mut [u8],
+    at: usize,
+    value: Option<u16>,
+    field: &'static str,
+) -> Result<(), EncodeError> {
+    match value {
+        Some(NO_READING) => Err(EncodeError::OutOfRange { field }),
+        Some(v) => {
+            put_u16(out, at, v);
+            Ok(())
+        }
+        None => {
+            put_u16(out, at, NO_READING);
+            Ok(())
+        }
+    }
+}
+
+impl Telemetry {
+    /// The longest telemetry frame (the 53-byte BLE layout).
+    pub const MAX_LEN: usize = 53;
+
+    /// Decode one complete frame whose length selects its layout. Returns
+    /// `None` unless the frame starts `a5 60`, has a layout's length and a valid
+    /// checksum.
+    pub fn from_frame(frame: &[u8]) -> Option<Telemetry> {
+        let layout = Layout::from_len(frame.len())?;
+        let (&sum, body) = frame.split_last()?;
+        if frame[0] != START || frame[1] != id::TELEMETRY || checksum(&body[1..]) != sum {
+            return None;
+        }
+        Some(Telemetry::parse(layout, frame))
+    }
+
+    /// Read the fields of `frame`, which has `layout`'s length.
+    pub(crate) fn parse(layout: Layout, frame: &[u8]) -> Telemetry {
+        let at = offsets(layout);
+        let f32_at = |i: usize| {
+            f32::from_bits(u32::from_le_bytes([
+                frame[i],
+                frame[i + 1],
+                frame[i + 2],
+                frame[i + 3],
+            ]))
+        };
+        Telemetry {
+            layout,
+            m1_pos: reading_at(frame, 2),
+            m2_pos: reading_at(frame, 4),
+            uwb: at
+                .uwb
+                .map(|o| core::array::from_fn(|i| reading_at(frame, o + 2 * i))),
+            tof: at.tof.map(|o| reading_at(frame, o)),
+            imu: at
+                .imu
+                .map(|o| Imu::from_array(core::array::from_fn(|i| f32_at(o + 4 * i)))),
+            m1_adcs: at
+                .adcs
+                .map(|o| core::array::from_fn(|i| u16_at(frame, o + 2 * i))),
+            m2_adcs: at
+                .adcs
+                .map(|o| core::array::from_fn(|i| u16_at(frame, o + M1_ADCS_LEN + 2 * i))),
+        }
+    }
+
+    /// A telemetry message of `layout` with every carried reading absent
+    /// (`0xFFFF`), a zero IMU sample and zero ADCs: a starting point to fill.
+    pub const fn empty(layout: Layout) -> Telemetry {
+        let at = offsets(layout);
+        Telemetry {
+            layout,
+            m1_pos: None,
+            m2_pos: None,
+            uwb: if at.uwb.is_some() {
+                Some([None; 4])
+            } else {
+                None
+            },
+            tof: if at.tof.is_some() { Some(None) } else { None },
+            imu: if at.imu.is_some() {
+                Some(Imu::from_array([0.0; 6]))
+            } else {
+                None
+            },
+            m1_adcs: if at.adcs.is_some() {
+                Some([0; 4])
+            } else {
+                None
+            },
+            m2_adcs: if at.adcs.is_some() {
+                Some([0; 2])
+            } else {
+                None
+            },
+        }
+    }
+
+    /// Whether every field group is present exactly when the layout carries it.
+    pub const fn is_consistent(&self) -> bool {
+        let at = offsets(self.layout);
+        at.uwb.is_some() == self.uwb.is_some()
+            && at.tof.is_some() == self.tof.is_some()
+            && at.imu.is_some() == self.imu.is_some()
+            && at.adcs.is_some() == self.m1_adcs.is_some()
+            && at.adcs.is_some() == self.m2_adcs.is_some()
+    }
+}
+
+impl Encode for Telemetry {
+    const MAX_LEN: usize = Telemetry::MAX_LEN;
+
+    fn encoded_len(&self) -> usize {
+        self.layout.frame_len()
+    }
+
+    /// Encode the frame. Fails with [`EncodeError::Inconsistent`] when a field
+    /// group is present that the layout does not carry (or missing that it
+    /// does), and with [`EncodeError::OutOfRange`] for `Some(0xFFFF)`, which
+    /// would decode as `None`.
+    fn encode(&self, out: &mut [u8]) -> Result<usize, EncodeError> {
+        let len = self.layout.frame_len();
+        check_room(out, len)?;
+        if !self.is_consistent() {
+            return Err(EncodeError::Inconsistent {
+                what: "a field group is present exactly when the layout carries it",
+            });
+        }
+        let out = &mut out[..len];
+        let at = offsets(self.layout);
+        out[0] = START;
+        out[1] = id::TELEMETRY;
+        put_reading(out, 2, self.m1_pos, "m1_pos")?;
+        put_reading(out, 4, self.m2_pos, "m2_pos")?;
+        if let (Some(o), Some(uwb)) = (at.uwb, self.uwb) {
+            for (i, d) in uwb.into_iter().enumerate() {
+                put_reading(out, o + 2 * i, d, "uwb")?;
+            }
+        }
+        if let (Some(o), Some(tof)) = (at.tof, self.tof) {
+            put_reading(out, o, tof, "tof")?;
+        }
+        if let (Some(o), Some(imu)) = (at.imu, self.imu) {
+            for (i, v) in imu.to_array().into_iter().enumerate() {
+                out[o + 4 * i..o + 4 * i + 4].copy_from_slice(&v.to_bits().to_le_bytes());
+            }
+        }
+        if let (Some(o), Some(m1), Some(m2)) = (at.adcs, self.m1_adcs, self.m2_adcs) {
+            for (i, v) in m1.into_iter().enumerate() {
+                put_u16(out, o + 2 * i, v);
+            }
+            for (i, v) in m2.into_iter().enumerate() {
+                put_u16(out, o + M1_ADCS_LEN + 2 * i, v);
+            }
+        }
+        out[len - 1] = checksum(&out[1..len - 1]);
+        Ok(len)
+    }
+}
