@@ -45,15 +45,7 @@ impl DatagramDecoder {
         Self {
             framing,
             offset: 0,
-            stats: Stats {
-                bytes: 0,
-                frames: 0,
-                frame_bytes: 0,
-                skipped: 0,
-                checksum_errors: 0,
-                rejected: 0,
-                malformed: 0,
-            },
+            stats: Stats::new(),
         }
     }
 

@@ -33,4 +33,12 @@ pub enum Error {
         /// Bytes of the candidate that arrived.
         len: usize,
     },
+    /// The candidate validated after a resync, but a frame starting inside it
+    /// validated too and only that frame is followed by a plausible header: the
+    /// candidate was most likely garbage that happened to sum right.
+    #[error("a {len}-byte candidate overlapped a confirmed frame and was set aside")]
+    Superseded {
+        /// The candidate's length.
+        len: usize,
+    },
 }

@@ -150,6 +150,9 @@ impl stream::Framing for Framing {
     type Message<'a> = Packet;
     type Owned = Packet;
 
+    /// `a5` and the id: enough to reject an unknown id.
+    const HEADER_LEN: usize = 2;
+
     fn find_start(&self, bytes: &[u8]) -> usize {
         memchr::memchr(START, bytes).unwrap_or(bytes.len())
     }
@@ -188,6 +191,10 @@ impl stream::Framing for Framing {
 
     fn truncated(&self, len: usize) -> Error {
         Error::Truncated { len }
+    }
+
+    fn superseded(&self, len: usize) -> Error {
+        Error::Superseded { len }
     }
 
     fn is_checksum_error(&self, error: &Error) -> bool {
