@@ -803,3 +803,25 @@ fn garbage_that_sums_right_does_not_swallow_a_real_frame() {
         ]
     );
 }
+
+#[cfg(feature = "bytes")]
+#[test]
+fn encode_into_bufmut() {
+    let mut buf = bytes::BytesMut::new();
+    for (wire, command) in command_vectors() {
+        let before = buf.len();
+        let n = command.encode_buf(&mut buf).unwrap();
+        assert_eq!(&buf[before..], &hex(wire)[..]);
+        assert_eq!(n, hex(wire).len());
+    }
+    let (_, t) = telemetry_vectors().pop().unwrap();
+    let mut small = [0u8; 10];
+    let mut slice: &mut [u8] = &mut small;
+    assert_eq!(
+        t.encode_buf(&mut slice),
+        Err(robowire::EncodeError::BufferTooSmall {
+            needed: 53,
+            available: 10
+        })
+    );
+}
