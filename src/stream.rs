@@ -329,6 +329,8 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         }
     }
 
+    // Every arm of the loop returns; the `loop` only scopes the scan.
+    #[allow(clippy::never_loop)]
     fn decode_in_place<'a, 'i: 'a>(
         &'a mut self,
         input: &mut &'i [u8],
@@ -387,6 +389,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
     }
 
     /// A candidate is buffered: add input bytes to it until it resolves.
+    #[allow(clippy::never_loop)]
     fn decode_buffered<'a, 'i: 'a>(
         &'a mut self,
         input: &mut &'i [u8],
