@@ -12,6 +12,7 @@ pub mod stream;
 
 pub use stream::{Check, Event, Frame, Framing, Rejected, Stats, StreamDecoder};
 pub mod encode;
+pub mod telemetrix;
 
 pub use encode::{Encode, EncodeError, FrameBuf};
 pub use stream::{Feed, Flush, Framed, OwnedEvent};
