@@ -75,7 +75,7 @@ fn golden_command(dialect: Dialect, bytes: &str, c: CommandRef<'_>) {
     assert_eq!(encode_command(dialect, &c), bytes, "encode {c:?}");
     let events = decode_commands(dialect, &bytes);
     assert_eq!(events.len(), 1, "{events:?}");
-    let (offset, len, ref got) = events[0].clone().unwrap();
+    let (offset, len, ref got) = events[0].unwrap();
     assert_eq!((offset, len), (0, bytes.len()));
     assert_eq!(got.as_ref(), c);
 }
@@ -86,7 +86,7 @@ fn golden_report(dialect: Dialect, bytes: &str, r: ReportRef<'_>) {
     assert_eq!(encode_report(dialect, &r), bytes, "encode {r:?}");
     let events = decode_reports(dialect, &bytes);
     assert_eq!(events.len(), 1, "{events:?}");
-    let (offset, len, ref got) = events[0].clone().unwrap();
+    let (offset, len, ref got) = events[0].unwrap();
     assert_eq!((offset, len), (0, bytes.len()));
     assert_eq!(got.as_ref(), r);
 }

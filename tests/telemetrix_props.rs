@@ -595,11 +595,9 @@ fn frames<F: Framing, const N: usize>(
     bytes: &[u8],
 ) -> Vec<(Vec<u8>, F::Owned)> {
     let mut out = Vec::new();
-    for e in dec.feed(bytes).chain(std::iter::empty()) {
-        if let Ok(f) = e {
-            let start = f.offset as usize;
-            out.push((bytes[start..start + f.len].to_vec(), f.message));
-        }
+    for f in dec.feed(bytes).flatten() {
+        let start = f.offset as usize;
+        out.push((bytes[start..start + f.len].to_vec(), f.message));
     }
     for f in dec.flush().flatten() {
         let start = f.offset as usize;
@@ -705,7 +703,7 @@ proptest! {
             bytes.extend_from_slice(&out[..n]);
         }
         let mut dec = ReportDecoder::new(ReportFraming::new().with_dialect(d));
-        let found: Vec<_> = dec.feed(&bytes).chain(std::iter::empty()).collect();
+        let found: Vec<_> = dec.feed(&bytes).collect();
         let s = dec.stats();
         prop_assert_eq!(s.bytes, bytes.len() as u64);
         prop_assert_eq!(s.bytes, s.frame_bytes + s.skipped + dec.buffered() as u64);
@@ -725,7 +723,7 @@ proptest! {
             let mut out = [0u8; 256];
             let n = r.encode_in(d, &mut out).unwrap();
             bytes.extend_from_slice(&out[..n]);
-            expected.push(r.clone());
+            expected.push(*r);
         }
         let got: Vec<_> = frames(ReportDecoder::new(ReportFraming::new().with_dialect(d)), &bytes)
             .into_iter()
@@ -752,7 +750,7 @@ proptest! {
             }
             bytes.extend_from_slice(g);
             bytes.extend_from_slice(&out[..n]);
-            expected.push(r.clone());
+            expected.push(*r);
         }
         let got: Vec<_> = frames(ReportDecoder::new(ReportFraming::new()), &bytes)
             .into_iter()

@@ -8,7 +8,7 @@ use core::ops::Deref;
 use crate::EncodeError;
 
 /// Up to `N` items of `T` stored inline (an array and a length). Only the first
-/// [`len`](Self::len) items count: equality, hashing and `Debug` ignore the rest.
+/// `len` items count: equality, hashing and `Debug` ignore the rest.
 #[derive(Clone, Copy)]
 pub struct List<T, const N: usize> {
     items: [T; N],

@@ -32,7 +32,7 @@
 //! # Decoding
 //!
 //! [`ReportDecoder`] (host side) and [`CommandDecoder`] (Pico side) are the
-//! shared [`StreamDecoder`](crate::StreamDecoder) with this protocol's
+//! shared [`StreamDecoder`] with this protocol's
 //! framing. Without a checksum, a candidate is accepted only when its id is
 //! known, its `LEN` is the one that id (and its count or sub-type bytes)
 //! requires, and its fields are values the sender produces; otherwise the
@@ -41,10 +41,10 @@
 //!
 //! # Encoding
 //!
-//! Every message implements [`Encode`](crate::Encode) for mirte 1.3;
+//! Every message implements [`Encode`] for mirte 1.3;
 //! `encode_in(dialect, out)` or [`InDialect`] select another dialect. The
 //! encoder writes full payloads and refuses (with an
-//! [`EncodeError`](crate::EncodeError)) anything its own decoder would
+//! [`EncodeError`]) anything its own decoder would
 //! reject: ids the dialect lacks, `LEN` over 30, the per-command maxima, pins
 //! ≥ 30.
 //!
