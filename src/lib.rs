@@ -7,6 +7,7 @@
 pub mod encode;
 pub mod omnitiles;
 pub mod stream;
+pub mod telemetrix;
 
 pub use encode::{Encode, EncodeError, FrameBuf};
 pub use stream::{

@@ -58,6 +58,13 @@ pub trait Framing {
     /// plausibly follows it (see [`StreamDecoder`]'s resync verification).
     const HEADER_LEN: usize;
 
+    /// Whether the engine verifies candidates found after a resync against
+    /// overlapping frames (see [`StreamDecoder`]). Worth it with a checksum,
+    /// which makes a valid frame inside another rare; without one, plausible
+    /// frames inside frames are so common that the test costs about as many
+    /// real frames as it saves.
+    const VERIFY_AFTER_RESYNC: bool = true;
+
     /// The index of the first byte in `bytes` at which a frame could start, or
     /// `bytes.len()` if none can. A start that cannot be confirmed from `bytes`
     /// alone (a multi-byte sync word cut by the end of `bytes`) must be returned.
@@ -394,7 +401,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             Check::Frame(n) | Check::Need(n) => return Verdict::Need(n.max(c.len() + 1)),
             Check::Reject(e) => return Verdict::Reject(e),
         };
-        if self.synced {
+        if self.synced || !F::VERIFY_AFTER_RESYNC {
             return Verdict::Frame(n);
         }
         // Verification looks at no more than the buffer could hold, so its
@@ -409,8 +416,11 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             }
             let inner_end = match self.framing.check(&c[p..], at_end) {
                 Check::Frame(m) if m > 0 && p + m <= c.len() => p + m,
-                Check::Frame(m) | Check::Need(m) => return self.wait_or_accept(n, p + m),
-                Check::Reject(_) => {
+                Check::Frame(m) | Check::Need(m) if !at_end => {
+                    return self.wait_or_accept(n, p + m)
+                }
+                // At the end of input an unfinished inner candidate is no frame.
+                Check::Frame(_) | Check::Need(_) | Check::Reject(_) => {
                     p += 1;
                     continue;
                 }
