@@ -40,7 +40,7 @@ mod sealed {
 
 /// Which messages a [`Framing`] accepts (sealed: [`Host`], [`Device`],
 /// [`Any`]).
-pub trait Side: sealed::Sealed {
+pub trait Side: sealed::Sealed + Copy + Eq + core::hash::Hash + core::fmt::Debug + Default {
     /// The message a decoder of this side yields.
     type Message<'a>;
     /// Its owned form.
