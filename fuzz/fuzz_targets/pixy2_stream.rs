@@ -13,7 +13,10 @@ fn counters_add_up<S: Side, const N: usize>(d: &StreamDecoder<Framing<S>, N>) {
     assert_eq!(s.bytes, s.frame_bytes + s.skipped + d.buffered() as u64);
 }
 
-fn whole<S: Side, const N: usize>(framing: Framing<S>, input: &[u8]) -> Vec<OwnedEvent<Framing<S>>> {
+fn whole<S: Side, const N: usize>(
+    framing: Framing<S>,
+    input: &[u8],
+) -> Vec<OwnedEvent<Framing<S>>> {
     let mut d = StreamDecoder::<Framing<S>, N>::new(framing);
     let mut events: Vec<_> = d.feed(input).collect();
     counters_add_up(&d);
@@ -33,7 +36,9 @@ fn chunked<S: Side, const N: usize>(
     let mut rest = input;
     let mut i = 0;
     while !rest.is_empty() {
-        let size = sizes.get(i % sizes.len().max(1)).map_or(1, |&s| usize::from(s) + 1);
+        let size = sizes
+            .get(i % sizes.len().max(1))
+            .map_or(1, |&s| usize::from(s) + 1);
         i += 1;
         let (chunk, after) = rest.split_at(size.min(rest.len()));
         rest = after;
@@ -61,7 +66,10 @@ fn chunked<S: Side, const N: usize>(
     events
 }
 
-fn pushed<S: Side, const N: usize>(framing: Framing<S>, input: &[u8]) -> Vec<OwnedEvent<Framing<S>>> {
+fn pushed<S: Side, const N: usize>(
+    framing: Framing<S>,
+    input: &[u8],
+) -> Vec<OwnedEvent<Framing<S>>> {
     let mut d = StreamDecoder::<Framing<S>, N>::new(framing);
     let mut events = Vec::new();
     for &b in input {

@@ -40,10 +40,11 @@ fuzz_target!(|data: &[u8]| {
         for section in view.sections() {
             len += 2 + match section {
                 Section::Vectors(v) => 6 * v.count(),
-                Section::Intersections(i) => i
-                    .inspect(|x: &Intersection| assert!(x.lines().len() == usize::from(x.n)))
-                    .count()
-                    * 28,
+                Section::Intersections(i) => {
+                    i.inspect(|x: &Intersection| assert!(x.lines().len() == usize::from(x.n)))
+                        .count()
+                        * 28
+                }
                 Section::Barcodes(b) => 4 * b.count(),
                 Section::Unknown { data, .. } => data.len(),
             };
