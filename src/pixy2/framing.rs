@@ -8,7 +8,11 @@
 //!   one not followed by `0xc1` is rejected as [`Error::Sync`] and the search
 //!   goes on from the next byte. SPI filler (`0x01`) is skipped as garbage; a
 //!   doubled first sync byte (`af af c1 …`) costs one [`Error::Sync`] event
-//!   and the frame is then found.
+//!   and the frame is then found. Every start byte is a candidate, not only
+//!   those already seen followed by `0xc1`, because a start byte at the end
+//!   of a chunk must be kept as a possible start; rejecting it when the next
+//!   chunk shows no `0xc1` is an event, so the same byte inside one chunk must
+//!   give the same event for the output not to depend on the chunking.
 //! * The header is checked as soon as its bytes are there: a type this side
 //!   does not accept is [`Error::UnknownType`], a length the type cannot have
 //!   is [`Error::BadLength`], a request over the device's 64-byte limit is

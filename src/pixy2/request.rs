@@ -309,23 +309,38 @@ impl GetRgb {
 
 /// Any host → device request.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[allow(missing_docs)] // each variant wraps the type of the same name
 pub enum Request {
+    /// 0x02 changeProg.
     ChangeProg(ChangeProg),
+    /// 0x0c getResolution.
     GetResolution(GetResolution),
+    /// 0x0e getVersion.
     GetVersion(GetVersion),
+    /// 0x10 setCameraBrightness.
     SetCameraBrightness(SetCameraBrightness),
+    /// 0x12 setServos.
     SetServos(SetServos),
+    /// 0x14 setLED.
     SetLed(SetLed),
+    /// 0x16 setLamp.
     SetLamp(SetLamp),
+    /// 0x18 getFPS.
     GetFps(GetFps),
+    /// 0x20 getBlocks.
     GetBlocks(GetBlocks),
+    /// 0x30 getFeatures.
     GetFeatures(GetFeatures),
+    /// 0x36 setMode.
     SetMode(SetMode),
+    /// 0x38 setVector.
     SetVector(SetVector),
+    /// 0x3a setNextTurn.
     SetNextTurn(SetNextTurn),
+    /// 0x3c setDefaultTurn.
     SetDefaultTurn(SetDefaultTurn),
+    /// 0x3e reverseVector.
     ReverseVector(ReverseVector),
+    /// 0x70 getRGB.
     GetRgb(GetRgb),
 }
 

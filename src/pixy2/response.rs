@@ -154,13 +154,18 @@ pub enum Response<'a> {
 
 /// The owned form of [`Response`], with fixed-capacity blocks and features.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[allow(missing_docs)] // the variants mirror `Response`
 pub enum ResponseBuf {
+    /// As [`Response::Result`].
     Result(i32),
+    /// As [`Response::Error`].
     Error(DeviceError),
+    /// As [`Response::Resolution`].
     Resolution(Resolution),
+    /// As [`Response::Version`].
     Version(Version),
+    /// As [`Response::Blocks`], owned.
     Blocks(BlocksBuf),
+    /// As [`Response::Features`], owned.
     Features(FeaturesBuf),
 }
 
