@@ -6,6 +6,7 @@
 
 pub mod encode;
 pub mod omnitiles;
+pub mod pixy2;
 pub mod stream;
 pub mod telemetrix;
 
