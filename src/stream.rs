@@ -522,11 +522,28 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             return self.decode_in_place(input);
         }
         let data: &'i [u8] = input;
-        let stored = self.len;
+        let mut stored = self.len;
         let take = data.len().min(N - stored);
         // Append input tentatively: bytes the candidate does not use are given
         // back to the caller.
         self.buf[stored..stored + take].copy_from_slice(&data[..take]);
+        let total = stored + take;
+        // A start that could not be confirmed at the end of the last chunk (a
+        // sync word cut in two) may turn out to be none: drop it silently, as
+        // `find_start` would have if the bytes had come in one chunk.
+        let skip = self.framing.find_start(&self.buf[..total]).min(stored);
+        if skip > 0 {
+            self.buf.copy_within(skip..total, 0);
+            self.buf_offset += skip as u64;
+            self.stats.skipped += skip as u64;
+            self.synced = false;
+            self.need = 0;
+            stored -= skip;
+            self.len = stored;
+            if stored == 0 {
+                return self.decode_in_place(input);
+            }
+        }
         let total = stored + take;
         if total < self.need {
             // Cannot resolve yet: keep everything without asking the framing.

@@ -57,6 +57,14 @@ pub enum Error {
         /// Bytes of the candidate that were available.
         len: usize,
     },
+    /// A candidate found after a resync validated, but a frame starting inside
+    /// it validated too and only that frame is followed by a plausible header
+    /// (the engine's resync verification): the candidate was set aside.
+    #[error("a {len}-byte candidate overlapped a confirmed frame and was set aside")]
+    Superseded {
+        /// The candidate's length.
+        len: usize,
+    },
     /// The header and (if present) the checksum are fine but the payload's
     /// contents are not (spec §7.4 item 5, §4.3).
     #[error("packet type 0x{packet_type:02x}: {what}")]

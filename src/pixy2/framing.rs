@@ -4,15 +4,12 @@
 //!
 //! Policy (spec §7.4):
 //!
-//! * Every `0xae`/`0xaf` byte is a candidate start (found with `memchr2`);
-//!   one not followed by `0xc1` is rejected as [`Error::Sync`] and the search
-//!   goes on from the next byte. SPI filler (`0x01`) is skipped as garbage; a
-//!   doubled first sync byte (`af af c1 …`) costs one [`Error::Sync`] event
-//!   and the frame is then found. Every start byte is a candidate, not only
-//!   those already seen followed by `0xc1`, because a start byte at the end
-//!   of a chunk must be kept as a possible start; rejecting it when the next
-//!   chunk shows no `0xc1` is an event, so the same byte inside one chunk must
-//!   give the same event for the output not to depend on the chunking.
+//! * Both sync words are found by a sliding search (`memchr` for `0xc1`, then
+//!   one byte back). SPI filler (`0x01`), junk and a doubled first sync byte
+//!   (`af af c1 …`) are skipped as garbage, silently. A first sync byte at the
+//!   end of a chunk is kept as a possible start; if the next chunk shows it
+//!   is none, the engine drops it silently too, so the output does not depend
+//!   on the chunking.
 //! * The header is checked as soon as its bytes are there: a type this side
 //!   does not accept is [`Error::UnknownType`], a length the type cannot have
 //!   is [`Error::BadLength`], a request over the device's 64-byte limit is
@@ -191,13 +188,29 @@ impl<S: Side> stream::Framing for Framing<S> {
     type Message<'a> = S::Message<'a>;
     type Owned = S::Owned;
 
+    /// Sync word, type and length: enough to reject an impossible header.
+    const HEADER_LEN: usize = 4;
+
+    /// Both sync words by sliding search: find each `0xc1` with `memchr` and
+    /// look one byte back. A first sync byte at the very end may be a start
+    /// whose `0xc1` has not arrived yet.
     fn find_start(&self, bytes: &[u8]) -> usize {
-        let found = if self.checksum_only {
-            memchr::memchr(0xaf, bytes)
-        } else {
-            memchr::memchr2(0xae, 0xaf, bytes)
-        };
-        found.unwrap_or(bytes.len())
+        let is_first = |b: u8| b == 0xaf || (b == 0xae && !self.checksum_only);
+        let mut from = 1;
+        while let Some(i) = bytes
+            .get(from..)
+            .and_then(|rest| memchr::memchr(0xc1, rest))
+        {
+            let at = from + i;
+            if is_first(bytes[at - 1]) {
+                return at - 1;
+            }
+            from = at + 1;
+        }
+        match bytes.last() {
+            Some(&b) if is_first(b) => bytes.len() - 1,
+            _ => bytes.len(),
+        }
     }
 
     fn check(&self, c: &[u8], _at_end: bool) -> Check<Error> {
@@ -255,6 +268,10 @@ impl<S: Side> stream::Framing for Framing<S> {
 
     fn truncated(&self, len: usize) -> Error {
         Error::Truncated { len }
+    }
+
+    fn superseded(&self, len: usize) -> Error {
+        Error::Superseded { len }
     }
 
     fn is_checksum_error(&self, error: &Error) -> bool {

@@ -90,12 +90,12 @@ pub use response::{FirmwareType, Resolution, Response, ResponseBuf, Rgb, Version
 
 use crate::stream::StreamDecoder;
 
-/// Buffer size of host and any-direction decoders: the longest frame (261)
-/// rounded up.
-pub const HOST_BUFFER: usize = 264;
-/// Buffer size of device decoders: the longest accepted request (6 + 64)
-/// rounded up.
-pub const DEVICE_BUFFER: usize = 72;
+/// Buffer size of host and any-direction decoders: twice the longest frame
+/// (261) and a header, so the engine's resync verification has room.
+pub const HOST_BUFFER: usize = 528;
+/// Buffer size of device decoders: twice the longest accepted request (6 + 64)
+/// and a header.
+pub const DEVICE_BUFFER: usize = 144;
 
 /// Decodes responses (the host's side).
 pub type HostDecoder = StreamDecoder<Framing<Host>, HOST_BUFFER>;
