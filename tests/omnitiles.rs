@@ -825,3 +825,23 @@ fn encode_into_bufmut() {
         })
     );
 }
+
+#[test]
+fn short_frame_followed_by_garbage_is_unconfirmed() {
+    let mut input = hex(T7);
+    input.extend([0x11; 60]);
+    let events = decode(Framing::ANY, &input);
+    assert_eq!(
+        events,
+        [Err(Rejected {
+            offset: 0,
+            error: Error::Unconfirmed
+        })]
+    );
+    // With its layout alone it needs no confirmation.
+    let events = decode(Framing::telemetry(Layouts::only(Layout::Pos7)), &input);
+    assert_eq!(
+        packets(&events),
+        [Packet::Telemetry(Telemetry::from_frame(&hex(T7)).unwrap())]
+    );
+}

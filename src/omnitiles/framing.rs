@@ -99,6 +99,7 @@ impl Framing {
             None => return Check::Reject(Error::UnknownId { id: id::TELEMETRY }),
         };
         let mut error = Error::Unconfirmed;
+        let mut unconfirmed = false;
         // Running sum over bytes 1.. so each length costs only its new bytes.
         let mut sum: u8 = 0;
         let mut summed = 1;
@@ -131,11 +132,17 @@ impl Framing {
             }
             match self.confirms(&c[len..], at_end) {
                 Some(true) => return Check::Frame(len),
-                Some(false) => error = Error::Unconfirmed,
+                Some(false) => unconfirmed = true,
                 None => return Check::Need(len + 2),
             }
         }
-        Check::Reject(error)
+        // A shorter layout that validated says more than the longest one's
+        // checksum: a frame was probably here, followed by garbage.
+        Check::Reject(if unconfirmed {
+            Error::Unconfirmed
+        } else {
+            error
+        })
     }
 }
 
