@@ -33,20 +33,21 @@ pub trait Protocol {
 /// Options every `decode` subcommand shares.
 #[derive(Debug, Args)]
 pub struct DecodeCommon {
-    /// Feed the decoder N bytes at a time (results never depend on it).
+    /// Feed the decoder N bytes at a time (the output never depends on it).
     #[arg(
         long,
         value_name = "N",
+        display_order = 3,
         default_value_t = 4096,
         value_parser = clap::value_parser!(u32).range(1..=(1 << 24)),
     )]
     pub chunk: u32,
     /// Read hex text (whitespace, commas and 0x prefixes ignored) as one byte
     /// stream instead of raw bytes.
-    #[arg(long)]
+    #[arg(long, display_order = 4)]
     pub hex: bool,
     /// Print rejected candidates too, as objects with `offset` and `error`.
-    #[arg(long)]
+    #[arg(long, display_order = 6)]
     pub errors: bool,
     /// The capture to read; `-` or absent for stdin.
     #[arg(value_name = "INPUT")]

@@ -110,15 +110,23 @@ impl LayoutArg {
 #[command(after_long_help = DECODE_SCHEMA)]
 pub struct DecodeArgs {
     /// Accept telemetry (tile), commands (host) or both (any).
-    #[arg(long, value_enum, default_value_t = Side::Any)]
+    #[arg(long, value_enum, display_order = 1, default_value_t = Side::Any)]
     pub from: Side,
     /// Telemetry layouts to accept, comma-separated [default: auto].
-    #[arg(long, value_enum, value_name = "L[,L...]", value_delimiter = ',')]
+    #[arg(
+        long,
+        value_enum,
+        value_name = "L[,L...]",
+        value_delimiter = ',',
+        display_order = 2
+    )]
     pub layout: Vec<LayoutArg>,
     /// Read hex text where each line is one datagram (one BLE notification,
-    /// one write, one SPI buffer) and decode it with the datagram decoder.
-    #[arg(long, conflicts_with = "chunk")]
+    /// one write, one SPI buffer) and decode each with the datagram decoder
+    /// (implies --hex; not with --chunk).
+    #[arg(long, conflicts_with = "chunk", display_order = 5)]
     pub datagrams: bool,
+    /// The options every decode shares.
     #[command(flatten)]
     pub common: DecodeCommon,
 }
@@ -127,6 +135,7 @@ pub struct DecodeArgs {
 #[derive(Debug, Args)]
 #[command(after_long_help = ENCODE_SCHEMA)]
 pub struct EncodeArgs {
+    /// The options every encode shares.
     #[command(flatten)]
     pub common: EncodeCommon,
 }
@@ -372,7 +381,12 @@ fn read_reading(value: &Value) -> Result<Option<u16>, String> {
     }
     read_int(value, 0, i64::from(NO_READING) - 1)
         .map(|v| Some(v as u16))
-        .map_err(|e| format!("{e} or null (0xFFFF, no reading, is written null)"))
+        .map_err(|_| {
+            format!(
+                "must be null or an integer 0..=65534 (0xFFFF, no reading, is written null), \
+                 found {value}"
+            )
+        })
 }
 
 fn read_u16(value: &Value) -> Result<u16, String> {
