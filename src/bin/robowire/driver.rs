@@ -125,6 +125,12 @@ impl<'o> Printer<'o> {
         }
         self.out.write(line.end())
     }
+
+    /// Write out everything printed so far (before waiting for input, so a
+    /// live stream's frames appear as they arrive).
+    pub fn flush(&mut self) -> Result<(), Failure> {
+        self.out.flush()
+    }
 }
 
 /// The end of a decode whose output went through: the counters, and the
@@ -163,6 +169,7 @@ pub fn decode_stream<P: Protocol, const N: usize>(
         for event in decoder.feed(&buf[..n]) {
             printer.event::<P>(event)?;
         }
+        printer.flush()?;
     }
     for event in decoder.flush() {
         printer.event::<P>(event)?;
@@ -198,7 +205,14 @@ pub fn encode_lines<P: Protocol>(input: Input, hex: bool, out: &mut Output) -> R
     let mut frame = Vec::new();
     let mut text = Vec::new();
     let mut bad = 0u64;
-    while let Some((number, line)) = lines.next_line()? {
+    loop {
+        // Flush before a read that may wait, so frames go out as lines arrive.
+        if !lines.has_buffered() {
+            out.flush()?;
+        }
+        let Some((number, line)) = lines.next_line()? else {
+            break;
+        };
         if line.iter().all(u8::is_ascii_whitespace) {
             continue;
         }

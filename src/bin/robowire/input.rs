@@ -18,6 +18,12 @@ const READ_SIZE: usize = 64 * 1024;
 pub struct Input {
     name: String,
     reader: Box<dyn Read>,
+    /// A regular file: reads fill the caller's buffer. Otherwise (stdin, a
+    /// pipe, a serial device) a read returns what has arrived, so a live
+    /// stream is decoded as it comes.
+    whole_reads: bool,
+    /// A read error that followed bytes already returned.
+    pending: Option<io::Error>,
 }
 
 impl Input {
@@ -28,10 +34,16 @@ impl Input {
             Some(p) if p.as_os_str() == "-" => Ok(Input::stdin()),
             Some(p) => {
                 let name = p.display().to_string();
-                match File::open(p) {
-                    Ok(file) => Ok(Input {
+                let opened = File::open(p).and_then(|file| {
+                    let whole_reads = file.metadata()?.is_file();
+                    Ok((file, whole_reads))
+                });
+                match opened {
+                    Ok((file, whole_reads)) => Ok(Input {
                         name,
                         reader: Box::new(file),
+                        whole_reads,
+                        pending: None,
                     }),
                     Err(error) => Err(Failure::Io {
                         context: name,
@@ -46,6 +58,8 @@ impl Input {
         Input {
             name: "stdin".to_owned(),
             reader: Box::new(io::stdin().lock()),
+            whole_reads: false,
+            pending: None,
         }
     }
 
@@ -61,14 +75,28 @@ impl Input {
         }
     }
 
-    /// Read until `buf` is full or the input ends; returns the bytes read.
-    fn read_full(&mut self, buf: &mut [u8]) -> Result<usize, Failure> {
+    /// Read into `buf`: from a regular file until `buf` is full or the file
+    /// ends (so `--chunk` pieces are exact), from anything else what one read
+    /// returns. `Ok(0)` only at the end of the input.
+    fn read_chunk(&mut self, buf: &mut [u8]) -> Result<usize, Failure> {
+        if let Some(error) = self.pending.take() {
+            return Err(self.failure(error));
+        }
         let mut n = 0;
         while n < buf.len() {
             match self.reader.read(&mut buf[n..]) {
                 Ok(0) => break,
-                Ok(k) => n += k,
+                Ok(k) => {
+                    n += k;
+                    if !self.whole_reads {
+                        break;
+                    }
+                }
                 Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+                Err(e) if n > 0 => {
+                    self.pending = Some(e);
+                    break;
+                }
                 Err(e) => return Err(self.failure(e)),
             }
         }
@@ -88,7 +116,7 @@ pub struct RawBytes(pub Input);
 
 impl ByteSource for RawBytes {
     fn fill(&mut self, buf: &mut [u8]) -> Result<usize, Failure> {
-        self.0.read_full(buf)
+        self.0.read_chunk(buf)
     }
 }
 
@@ -232,11 +260,20 @@ impl ByteSource for HexBytes {
         let mut n = 0;
         while n < buf.len() && !self.done {
             if self.pos == self.end {
-                let mut text = std::mem::take(&mut self.text);
-                let read = self.input.read_full(&mut text);
-                self.text = text;
+                if n > 0 && !self.input.whole_reads {
+                    // Hand over what has arrived before waiting for more.
+                    break;
+                }
                 self.pos = 0;
-                self.end = read?;
+                self.end = match self.input.read_chunk(&mut self.text) {
+                    Ok(k) => k,
+                    Err(failure) => {
+                        self.end = 0;
+                        self.error = Some(failure);
+                        self.done = true;
+                        break;
+                    }
+                };
                 if self.end == 0 {
                     self.done = true;
                     match self.parser.finish() {
@@ -326,6 +363,12 @@ impl Lines {
     /// The input's name.
     pub fn name(&self) -> &str {
         &self.name
+    }
+
+    /// Whether more input is already buffered, so the next line will not
+    /// wait for a read: the time to flush output is when this is false.
+    pub fn has_buffered(&self) -> bool {
+        !self.reader.buffer().is_empty()
     }
 
     /// The next line (1-based number, text without its line ending), or

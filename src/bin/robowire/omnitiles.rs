@@ -199,6 +199,10 @@ fn decode_datagrams(
     let mut datagram = Vec::new();
     let mut bad = 0u64;
     loop {
+        // Flush before a read that may wait, so frames go out as lines arrive.
+        if !lines.has_buffered() {
+            printer.flush()?;
+        }
         let (number, line) = match lines.next_line() {
             Ok(Some(line)) => line,
             Ok(None) => break,
