@@ -24,9 +24,9 @@ pub trait Protocol {
     /// Write `error` and the error's details.
     fn describe_error(error: &<Self::Framing as Framing>::Error, line: &mut JsonLine);
 
-    /// Read one JSON line (already known to be an object with a `type`) and
+    /// Read one JSON object (a line that is not a diagnostic event) and
     /// append the frame's bytes to `frame`. The error names the problem; the
-    /// caller adds the line number.
+    /// caller adds the input's name and the line number.
     fn encode(fields: Fields<'_>, frame: &mut Vec<u8>) -> Result<(), String>;
 }
 
@@ -34,6 +34,9 @@ pub trait Protocol {
 #[derive(Debug, Args)]
 pub struct DecodeCommon {
     /// Feed the decoder N bytes at a time (the output never depends on it).
+    ///
+    /// From a regular file the pieces are exactly N bytes; from stdin, a pipe
+    /// or a device each piece is what has arrived, at most N bytes.
     #[arg(
         long,
         value_name = "N",
@@ -169,7 +172,10 @@ pub fn decode_stream<P: Protocol, const N: usize>(
         for event in decoder.feed(&buf[..n]) {
             printer.event::<P>(event)?;
         }
-        printer.flush()?;
+        // Before a read that may wait, show what has been decoded so far.
+        if source.may_wait() {
+            printer.flush()?;
+        }
     }
     for event in decoder.flush() {
         printer.event::<P>(event)?;

@@ -68,6 +68,12 @@ impl Input {
         &self.name
     }
 
+    /// Whether a read may wait for bytes that have not arrived yet (stdin, a
+    /// pipe, a device), as opposed to a regular file.
+    pub fn may_wait(&self) -> bool {
+        !self.whole_reads
+    }
+
     fn failure(&self, error: io::Error) -> Failure {
         Failure::Io {
             context: self.name.clone(),
@@ -109,6 +115,9 @@ pub trait ByteSource {
     /// Fill `buf` as far as the input allows; `Ok(0)` at the end. Bytes that
     /// precede an error are returned first; the error comes on the next call.
     fn fill(&mut self, buf: &mut [u8]) -> Result<usize, Failure>;
+
+    /// Whether the next [`fill`](Self::fill) may wait for input to arrive.
+    fn may_wait(&self) -> bool;
 }
 
 /// Raw bytes, as they are.
@@ -117,6 +126,10 @@ pub struct RawBytes(pub Input);
 impl ByteSource for RawBytes {
     fn fill(&mut self, buf: &mut [u8]) -> Result<usize, Failure> {
         self.0.read_chunk(buf)
+    }
+
+    fn may_wait(&self) -> bool {
+        self.0.may_wait()
     }
 }
 
@@ -260,7 +273,7 @@ impl ByteSource for HexBytes {
         let mut n = 0;
         while n < buf.len() && !self.done {
             if self.pos == self.end {
-                if n > 0 && !self.input.whole_reads {
+                if n > 0 && self.input.may_wait() {
                     // Hand over what has arrived before waiting for more.
                     break;
                 }
@@ -313,6 +326,10 @@ impl ByteSource for HexBytes {
                 Ok(n)
             }
         }
+    }
+
+    fn may_wait(&self) -> bool {
+        self.input.may_wait()
     }
 }
 

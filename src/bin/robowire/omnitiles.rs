@@ -188,7 +188,8 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
 }
 
 /// One datagram per line of hex. A line that is not valid hex is reported and
-/// skipped; the run goes on and ends with [`Failure::Reported`].
+/// skipped; the run goes on, and [`Decoded::failure`] then says how many
+/// lines were skipped.
 fn decode_datagrams(
     framing: Framing,
     input: Input,
