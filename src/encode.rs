@@ -5,6 +5,9 @@ use core::fmt;
 use core::ops::Deref;
 
 /// Why a message could not be encoded. Nothing is written when encoding fails.
+// Serialize only: the `&'static str` fields cannot be deserialized.
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum EncodeError {
