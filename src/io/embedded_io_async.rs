@@ -2,8 +2,8 @@
 //! `embedded-io-async-07`): `no_std`, no allocation, for any executor
 //! (an Embassy UART, a USB CDC class, an in-memory pipe).
 //!
-//! The same API as [`io::embedded_io`](super::embedded_io), with `async`
-//! methods.
+//! The same API as the blocking `io::embedded_io` (feature `embedded-io-07`),
+//! with `async` methods.
 //!
 //! ```
 //! use robowire::io::embedded_io_async::{PacketReader, PacketWriter};
@@ -44,10 +44,10 @@ use crate::stream::{Framed, Framing, OwnedEvent, Rejected, Stats, StreamDecoder}
 
 /// Reads frames from an [`embedded_io_async::Read`] through a
 /// [`StreamDecoder`], using the buffer `B` (`&mut [u8]`, `[u8; K]`, …) for each
-/// read. Behaves as the blocking
-/// [`PacketReader`](super::embedded_io::PacketReader): a read of 0 bytes is the
-/// end of the input, which resolves the buffered candidate and yields
-/// `Ok(None)`.
+/// read. Behaves as the blocking `io::embedded_io::PacketReader`: each read is
+/// decoded in place, and a read of 0 bytes is the end of the input, which
+/// resolves the buffered candidate ([`StreamDecoder::finish`]) and yields
+/// `Ok(None)`; the next call reads again.
 ///
 /// [`read_event`](Self::read_event) and [`read_message`](Self::read_message)
 /// are as cancel-safe as `io.read`: the only `.await` is that read, and bytes
@@ -147,8 +147,11 @@ impl<R: Read, F: Framing, const N: usize, B: AsRef<[u8]> + AsMut<[u8]>> PacketRe
 }
 
 /// Writes messages to an [`embedded_io_async::Write`], one frame each,
-/// encoding into a [`FrameBuf<N>`] on the stack; see the blocking
-/// [`PacketWriter`](super::embedded_io::PacketWriter) for `N`.
+/// encoding into a [`FrameBuf<N>`] on the stack. `N` must be at least the
+/// longest frame you send (each protocol names it, e.g.
+/// [`omnitiles::MAX_FRAME_LEN`](crate::omnitiles::MAX_FRAME_LEN)); a longer
+/// frame fails with [`EncodeError::BufferTooSmall`](crate::EncodeError::BufferTooSmall)
+/// and nothing is written.
 #[derive(Debug)]
 pub struct PacketWriter<W, const N: usize> {
     io: W,

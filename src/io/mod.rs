@@ -4,9 +4,9 @@
 //!
 //! | feature | module | what it adds |
 //! |---|---|---|
-//! | `tokio-util-07` | [`io::tokio`](self::tokio) | [`FrameCodec`](self::tokio::FrameCodec): `tokio_util::codec` `Decoder` and `Encoder` (needs `std`) |
-//! | `embedded-io-07` | [`io::embedded_io`](self::embedded_io) | blocking [`PacketReader`](self::embedded_io::PacketReader) and [`PacketWriter`](self::embedded_io::PacketWriter) over `embedded_io` 0.7 |
-//! | `embedded-io-async-07` | [`io::embedded_io_async`](self::embedded_io_async) | the same over `embedded_io_async` 0.7 |
+//! | `tokio-util-07` | `io::tokio` | `FrameCodec`: `tokio_util::codec` `Decoder` and `Encoder` (needs `std`) |
+//! | `embedded-io-07` | `io::embedded_io` | blocking `PacketReader` and `PacketWriter` over `embedded_io` 0.7 |
+//! | `embedded-io-async-07` | `io::embedded_io_async` | the same over `embedded_io_async` 0.7 |
 //!
 //! All of them keep the engine's rules: a rejected candidate (bad checksum,
 //! unknown id, garbage) is an event or a counter in [`Stats`](crate::Stats),
