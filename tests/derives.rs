@@ -62,3 +62,15 @@ fn defmt_formats_reports_and_counters() {
     ];
     assert!(names.iter().all(|n| n.starts_with("robowire::")));
 }
+
+#[cfg(all(
+    feature = "defmt",
+    any(feature = "embedded-io-07", feature = "embedded-io-async-07")
+))]
+#[test]
+fn defmt_formats_write_errors() {
+    fn format<T: defmt::Format>() -> &'static str {
+        core::any::type_name::<T>()
+    }
+    assert!(format::<robowire::io::WriteError<u8>>().contains("WriteError"));
+}

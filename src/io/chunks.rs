@@ -117,6 +117,7 @@ impl<F: Framing, const N: usize, B: AsRef<[u8]> + AsMut<[u8]>> Chunks<F, N, B> {
 
 /// Why a packet writer could not send a message.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum WriteError<E> {
     /// The message could not be encoded (nothing was written).
     Encode(EncodeError),
