@@ -5,6 +5,9 @@ use core::fmt;
 use core::ops::Deref;
 
 /// Why a message could not be encoded. Nothing is written when encoding fails.
+// Serialize only: the `&'static str` fields cannot be deserialized.
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum EncodeError {
@@ -65,6 +68,20 @@ pub trait Encode {
         }
         buf.put_slice(&frame);
         Ok(n)
+    }
+}
+
+/// A reference encodes as the message it points to, so sinks that take
+/// messages by value (a codec's `Encoder`) also take `&message`.
+impl<T: Encode + ?Sized> Encode for &T {
+    const MAX_LEN: usize = T::MAX_LEN;
+
+    fn encoded_len(&self) -> usize {
+        (**self).encoded_len()
+    }
+
+    fn encode(&self, out: &mut [u8]) -> Result<usize, EncodeError> {
+        (**self).encode(out)
     }
 }
 

@@ -4,7 +4,11 @@
 #![forbid(unsafe_code)]
 #![doc = include_str!("../README.md")]
 
+#[cfg(feature = "tokio-util-07")]
+extern crate std;
+
 pub mod encode;
+pub mod io;
 pub mod omnitiles;
 pub mod pixy2;
 pub mod stream;

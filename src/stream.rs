@@ -121,6 +121,8 @@ impl<M> Frame<'_, M> {
 
 /// An owned decoded message with its place in the stream, as the
 /// [`Feed`] and [`Flush`] iterators yield it.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Framed<M> {
     /// Offset of the frame's first byte, as in [`Frame::offset`].
@@ -132,6 +134,8 @@ pub struct Framed<M> {
 }
 
 /// A rejected candidate or an unparseable frame, with its stream offset.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Rejected<E> {
     /// Offset of the candidate's first byte, as in [`Frame::offset`].
@@ -154,6 +158,8 @@ pub type Event<'a, M, E> = Result<Frame<'a, M>, Rejected<E>>;
 
 /// Link-quality counters. They always add up:
 /// `bytes == frame_bytes + skipped + buffered` (see [`StreamDecoder::buffered`]).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct Stats {

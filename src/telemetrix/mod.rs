@@ -106,9 +106,15 @@ pub const PIN_COUNT: u8 = 30;
 /// The firmware's `MAX_COMMAND_LENGTH`: the largest `LEN` of a command.
 pub const MAX_COMMAND_LEN: usize = 30;
 
+/// Buffer size of [`ReportDecoder`]: the longest report frame (256 bytes).
+pub const REPORT_BUFFER: usize = 256;
+
+/// Buffer size of [`CommandDecoder`]: the longest command frame (31 bytes).
+pub const COMMAND_BUFFER: usize = 32;
+
 /// Decoder of reports (the host side), for strict framings. Its buffer holds
 /// the longest report frame (256 bytes).
-pub type ReportDecoder = StreamDecoder<ReportFraming, 256>;
+pub type ReportDecoder = StreamDecoder<ReportFraming, REPORT_BUFFER>;
 
 /// Decoder of reports for a [`ReportFraming::lenient`] framing: its buffer
 /// holds an unknown frame and the known frame that must follow it.
@@ -116,7 +122,7 @@ pub type LenientReportDecoder = StreamDecoder<ReportFraming, 512>;
 
 /// Decoder of commands (the Pico side). Its buffer holds the longest command
 /// frame (31 bytes).
-pub type CommandDecoder = StreamDecoder<CommandFraming, 32>;
+pub type CommandDecoder = StreamDecoder<CommandFraming, COMMAND_BUFFER>;
 
 /// The host side's decoder, [`ReportDecoder`].
 pub type Decoder = ReportDecoder;

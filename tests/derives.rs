@@ -1,0 +1,76 @@
+//! The optional `serde` and `defmt` derives on the protocol-neutral types.
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_round_trips_reports_and_counters() {
+    use robowire::omnitiles::{Decoder, Framing};
+    use robowire::{EncodeError, Framed, Rejected, Stats};
+
+    let mut decoder = Decoder::new(Framing::commands());
+    decoder
+        .feed(&[0x00, 0xa5, 0x50, 0x51, 0xa5, 0x50, 0x50])
+        .for_each(drop);
+    let stats = decoder.stats();
+    let json = serde_json::to_string(&stats).unwrap();
+    assert_eq!(
+        json,
+        r#"{"bytes":7,"frames":1,"frame_bytes":3,"skipped":4,"checksum_errors":1,"rejected":0,"malformed":0,"superseded":0}"#
+    );
+    assert_eq!(serde_json::from_str::<Stats>(&json).unwrap(), stats);
+
+    let framed = Framed {
+        offset: 4,
+        len: 3,
+        message: 7u8,
+    };
+    let json = serde_json::to_string(&framed).unwrap();
+    assert_eq!(json, r#"{"offset":4,"len":3,"message":7}"#);
+    assert_eq!(serde_json::from_str::<Framed<u8>>(&json).unwrap(), framed);
+
+    let rejected = Rejected {
+        offset: 1,
+        error: 9u8,
+    };
+    let json = serde_json::to_string(&rejected).unwrap();
+    assert_eq!(
+        serde_json::from_str::<Rejected<u8>>(&json).unwrap(),
+        rejected
+    );
+
+    let error = EncodeError::BufferTooSmall {
+        needed: 6,
+        available: 2,
+    };
+    assert_eq!(
+        serde_json::to_string(&error).unwrap(),
+        r#"{"BufferTooSmall":{"needed":6,"available":2}}"#
+    );
+}
+
+/// Compiles only if every type here implements `defmt::Format`.
+#[cfg(feature = "defmt")]
+#[test]
+fn defmt_formats_reports_and_counters() {
+    fn format<T: defmt::Format>() -> &'static str {
+        core::any::type_name::<T>()
+    }
+    let names = [
+        format::<robowire::Stats>(),
+        format::<robowire::Framed<u8>>(),
+        format::<robowire::Rejected<u8>>(),
+        format::<robowire::EncodeError>(),
+    ];
+    assert!(names.iter().all(|n| n.starts_with("robowire::")));
+}
+
+#[cfg(all(
+    feature = "defmt",
+    any(feature = "embedded-io-07", feature = "embedded-io-async-07")
+))]
+#[test]
+fn defmt_formats_write_errors() {
+    fn format<T: defmt::Format>() -> &'static str {
+        core::any::type_name::<T>()
+    }
+    assert!(format::<robowire::io::WriteError<u8>>().contains("WriteError"));
+}
