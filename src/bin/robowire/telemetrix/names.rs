@@ -136,7 +136,7 @@ pub fn module_name(module_type: ModuleType) -> &'static str {
     MODULE_TYPES[usize::from(module_type.as_u8())]
 }
 
-/// SET_PIN_MODE `mode` names (spec §4.1), with the library's mode for each.
+/// SET_PIN_MODE `mode` names (spec §4.1): modes 0, 3, 4, 1, 2, 5.
 pub const PIN_MODES: [&str; 6] = [
     "digital_input",
     "digital_input_pull_up",
