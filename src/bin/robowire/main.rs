@@ -10,6 +10,7 @@ mod driver;
 mod input;
 mod json;
 mod omnitiles;
+mod telemetrix;
 
 use clap::{Parser, Subcommand};
 use std::io;
@@ -58,12 +59,16 @@ enum Verb {
 enum DecodeProtocol {
     /// OmniTiles: host commands and tile telemetry (0xA5, id, payload, sum).
     Omnitiles(omnitiles::DecodeArgs),
+    /// Telemetrix4RpiPico: host commands and Pico reports (LEN, id, payload).
+    Telemetrix(telemetrix::DecodeArgs),
 }
 
 #[derive(Debug, Subcommand)]
 enum EncodeProtocol {
     /// OmniTiles: commands and telemetry from JSON lines.
     Omnitiles(omnitiles::EncodeArgs),
+    /// Telemetrix4RpiPico: commands and reports from JSON lines.
+    Telemetrix(telemetrix::EncodeArgs),
 }
 
 /// Why a run stopped early, and so its exit status.
@@ -134,6 +139,12 @@ fn run(verb: &Verb, out: &mut driver::Output) -> Result<Done, Failure> {
         Verb::Encode {
             protocol: EncodeProtocol::Omnitiles(args),
         } => omnitiles::encode(args, out).map(|()| Done::Encoded),
+        Verb::Decode {
+            protocol: DecodeProtocol::Telemetrix(args),
+        } => telemetrix::decode(args, out).map(Done::Decoded),
+        Verb::Encode {
+            protocol: EncodeProtocol::Telemetrix(args),
+        } => telemetrix::encode(args, out).map(|()| Done::Encoded),
     }
 }
 
