@@ -59,6 +59,9 @@ fn defmt_formats_reports_and_counters() {
         format::<robowire::Framed<u8>>(),
         format::<robowire::Rejected<u8>>(),
         format::<robowire::EncodeError>(),
+        format::<robowire::Check<u8>>(),
+        format::<robowire::Frame<'static, u8>>(),
+        format::<robowire::FrameBuf<8>>(),
     ];
     assert!(names.iter().all(|n| n.starts_with("robowire::")));
 }
@@ -73,4 +76,43 @@ fn defmt_formats_write_errors() {
         core::any::type_name::<T>()
     }
     assert!(format::<robowire::io::WriteError<u8>>().contains("WriteError"));
+}
+
+/// Serialize `value` to JSON, check the text, and read it back.
+#[cfg(feature = "serde")]
+fn json_round_trip<T>(value: &T, expected: &str)
+where
+    T: serde::Serialize + serde::de::DeserializeOwned + PartialEq + core::fmt::Debug,
+{
+    let json = serde_json::to_string(value).unwrap();
+    assert_eq!(json, expected);
+    assert_eq!(&serde_json::from_str::<T>(&json).unwrap(), value);
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_engine_types() {
+    use robowire::{Check, Frame, FrameBuf};
+
+    json_round_trip(&Check::<u8>::Need(4), r#"{"Need":4}"#);
+    json_round_trip(&Check::<u8>::Reject(2), r#"{"Reject":2}"#);
+
+    let frame = Frame {
+        offset: 3,
+        raw: &[0xa5, 0x50, 0x50][..],
+        message: 1u8,
+    };
+    assert_eq!(
+        serde_json::to_string(&frame).unwrap(),
+        r#"{"offset":3,"raw":[165,80,80],"message":1}"#
+    );
+
+    let buf = FrameBuf::<8>::encode(&robowire::omnitiles::Command::Ping).unwrap();
+    json_round_trip(&buf, "[165,80,80]");
+    json_round_trip(&FrameBuf::<8>::new(), "[]");
+    let too_long = serde_json::from_str::<FrameBuf<2>>("[165,80,80]").unwrap_err();
+    assert!(
+        too_long.to_string().contains("at most 2 bytes"),
+        "{too_long}"
+    );
 }
