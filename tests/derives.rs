@@ -62,6 +62,17 @@ fn defmt_formats_reports_and_counters() {
         format::<robowire::Check<u8>>(),
         format::<robowire::Frame<'static, u8>>(),
         format::<robowire::FrameBuf<8>>(),
+        format::<robowire::omnitiles::Motor>(),
+        format::<robowire::omnitiles::Command>(),
+        format::<robowire::omnitiles::Layout>(),
+        format::<robowire::omnitiles::Layouts>(),
+        format::<robowire::omnitiles::Imu>(),
+        format::<robowire::omnitiles::Telemetry>(),
+        format::<robowire::omnitiles::Packet>(),
+        format::<robowire::omnitiles::Error>(),
+        format::<robowire::omnitiles::Framing>(),
+        format::<robowire::omnitiles::DatagramDecoder>(),
+        format::<robowire::omnitiles::Datagram<'static, 'static>>(),
     ];
     assert!(names.iter().all(|n| n.starts_with("robowire::")));
 }
@@ -115,4 +126,118 @@ fn serde_engine_types() {
         too_long.to_string().contains("at most 2 bytes"),
         "{too_long}"
     );
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_omnitiles_commands_and_config() {
+    use robowire::omnitiles::{Command, Error, Framing, Layout, Layouts, Motor, Packet};
+
+    json_round_trip(
+        &Packet::Command(Command::Extend {
+            motor: Motor::M1,
+            speed: 200,
+        }),
+        r#"{"Command":{"Extend":{"motor":"M1","speed":200}}}"#,
+    );
+    json_round_trip(&Command::Ping, r#""Ping""#);
+    json_round_trip(
+        &Command::BaseVelocity {
+            vx: -127,
+            vy: 0,
+            omega: 5,
+        },
+        r#"{"BaseVelocity":{"vx":-127,"vy":0,"omega":5}}"#,
+    );
+    json_round_trip(&Layout::UwbTof17, r#""uwbtof17""#);
+    json_round_trip(&Layouts::DOCUMENTED, "23");
+    json_round_trip(&Layouts::NONE, "0");
+    json_round_trip(
+        &Framing::telemetry(Layouts::only(Layout::Spi45)),
+        r#"{"commands":false,"layouts":8}"#,
+    );
+    json_round_trip(
+        &Error::Checksum {
+            expected: 0xf8,
+            found: 0xf7,
+        },
+        r#"{"Checksum":{"expected":248,"found":247}}"#,
+    );
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_omnitiles_refuses_undefined_layout_bits() {
+    use robowire::omnitiles::{Framing, Layouts};
+
+    assert_eq!(serde_json::from_str::<Layouts>("31").unwrap(), Layouts::ALL);
+    for bits in ["32", "255", "33"] {
+        let err = serde_json::from_str::<Layouts>(bits).unwrap_err();
+        assert!(err.to_string().contains("telemetry layouts"), "{err}");
+    }
+    assert!(serde_json::from_str::<Layouts>("256").is_err());
+    assert!(serde_json::from_str::<Framing>(r#"{"commands":true,"layouts":64}"#).is_err());
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_omnitiles_telemetry() {
+    use robowire::omnitiles::{Imu, Layout, Packet, Telemetry};
+    use robowire::FrameBuf;
+
+    // A BLE frame with finite IMU values (JSON has no NaN), decoded from its bytes.
+    let mut sent = Telemetry::empty(Layout::Ble53);
+    sent.m1_pos = Some(2000);
+    sent.uwb = Some([Some(1200), None, Some(800), None]);
+    sent.imu = Some(Imu::from_array([0.5, -0.25, 9.75, 0.0, 0.125, -1.5]));
+    sent.m1_adcs = Some([1, 2, 3, 4]);
+    sent.m2_adcs = Some([5, 6]);
+    let frame = FrameBuf::<64>::encode(&sent).unwrap();
+    let telemetry = Telemetry::from_frame(&frame).unwrap();
+    assert_eq!(telemetry, sent);
+    assert_eq!(telemetry.tof, Some(None));
+    json_round_trip(
+        &Packet::Telemetry(telemetry),
+        concat!(
+            r#"{"Telemetry":{"layout":"ble53","m1_pos":2000,"m2_pos":null,"#,
+            r#""uwb":[1200,null,800,null],"tof":null,"#,
+            r#""imu":{"ax":0.5,"ay":-0.25,"az":9.75,"gx":0.0,"gy":0.125,"gz":-1.5},"#,
+            r#""m1_adcs":[1,2,3,4],"m2_adcs":[5,6]}}"#
+        ),
+    );
+
+    // `tof: null` is "not carried" where the layout has no ToF field.
+    let short = Telemetry::from_frame(&[0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x22]).unwrap();
+    assert_eq!(short.tof, None);
+    json_round_trip(
+        &short,
+        r#"{"layout":"pos7","m1_pos":2000,"m2_pos":1000,"uwb":null,"tof":null,"imu":null,"m1_adcs":null,"m2_adcs":null}"#,
+    );
+    let with_tof = Telemetry {
+        tof: Some(Some(310)),
+        ..Telemetry::empty(Layout::UwbTof17)
+    };
+    json_round_trip(
+        &with_tof,
+        r#"{"layout":"uwbtof17","m1_pos":null,"m2_pos":null,"uwb":[null,null,null,null],"tof":310,"imu":null,"m1_adcs":null,"m2_adcs":null}"#,
+    );
+
+    // Field groups the layout does not carry (or lacks) are refused.
+    let imu_in_pos7 = r#"{"layout":"pos7","m1_pos":1,"m2_pos":2,"uwb":null,"tof":null,
+        "imu":{"ax":0.0,"ay":0.0,"az":0.0,"gx":0.0,"gy":0.0,"gz":0.0},"m1_adcs":null,"m2_adcs":null}"#;
+    let err = serde_json::from_str::<Telemetry>(imu_in_pos7).unwrap_err();
+    assert!(err.to_string().contains("do not match the layout"), "{err}");
+    let ble_without_adcs = r#"{"layout":"ble53","m1_pos":1,"m2_pos":2,"uwb":[1,2,3,4],"tof":5,
+        "imu":{"ax":0.0,"ay":0.0,"az":0.0,"gx":0.0,"gy":0.0,"gz":0.0},"m1_adcs":null,"m2_adcs":null}"#;
+    let err = serde_json::from_str::<Telemetry>(ble_without_adcs).unwrap_err();
+    assert!(err.to_string().contains("do not match the layout"), "{err}");
+
+    // NaN becomes null in JSON and does not come back.
+    let nan = Telemetry {
+        imu: Some(Imu::from_array([f32::NAN, 0.0, 0.0, 0.0, 0.0, 0.0])),
+        ..Telemetry::empty(Layout::Spi45)
+    };
+    let json = serde_json::to_string(&nan).unwrap();
+    assert!(json.contains(r#""ax":null"#), "{json}");
+    assert!(serde_json::from_str::<Telemetry>(&json).is_err());
 }
