@@ -73,6 +73,57 @@ fn defmt_formats_reports_and_counters() {
         format::<robowire::omnitiles::Framing>(),
         format::<robowire::omnitiles::DatagramDecoder>(),
         format::<robowire::omnitiles::Datagram<'static, 'static>>(),
+        format::<robowire::pixy2::Block>(),
+        format::<robowire::pixy2::BlockIter<'static>>(),
+        format::<robowire::pixy2::Blocks<'static>>(),
+        format::<robowire::pixy2::BlocksBuf>(),
+        format::<robowire::pixy2::Error>(),
+        format::<robowire::pixy2::Malformed>(),
+        format::<robowire::pixy2::DeviceError>(),
+        format::<robowire::pixy2::Vector>(),
+        format::<robowire::pixy2::IntersectionLine>(),
+        format::<robowire::pixy2::Intersection>(),
+        format::<robowire::pixy2::Barcode>(),
+        format::<robowire::pixy2::Section<'static>>(),
+        format::<robowire::pixy2::Sections<'static>>(),
+        format::<robowire::pixy2::Elements<'static, robowire::pixy2::Vector>>(),
+        format::<robowire::pixy2::FeatureIter<'static, robowire::pixy2::Barcode>>(),
+        format::<robowire::pixy2::Features<'static>>(),
+        format::<robowire::pixy2::FeaturesBuf>(),
+        format::<robowire::pixy2::Host>(),
+        format::<robowire::pixy2::Device>(),
+        format::<robowire::pixy2::Any>(),
+        format::<robowire::pixy2::Framing<robowire::pixy2::Host>>(),
+        format::<robowire::pixy2::Form>(),
+        format::<robowire::pixy2::Packet<robowire::pixy2::Request>>(),
+        format::<robowire::pixy2::Message<'static>>(),
+        format::<robowire::pixy2::MessageBuf>(),
+        format::<robowire::pixy2::PairError>(),
+        format::<robowire::pixy2::ProgSwitch>(),
+        format::<robowire::pixy2::ProgName>(),
+        format::<robowire::pixy2::ChangeProg>(),
+        format::<robowire::pixy2::GetResolution>(),
+        format::<robowire::pixy2::GetVersion>(),
+        format::<robowire::pixy2::SetCameraBrightness>(),
+        format::<robowire::pixy2::SetServos>(),
+        format::<robowire::pixy2::SetLed>(),
+        format::<robowire::pixy2::SetLamp>(),
+        format::<robowire::pixy2::GetFps>(),
+        format::<robowire::pixy2::GetBlocks>(),
+        format::<robowire::pixy2::GetFeatures>(),
+        format::<robowire::pixy2::SetMode>(),
+        format::<robowire::pixy2::SetVector>(),
+        format::<robowire::pixy2::SetNextTurn>(),
+        format::<robowire::pixy2::SetDefaultTurn>(),
+        format::<robowire::pixy2::ReverseVector>(),
+        format::<robowire::pixy2::GetRgb>(),
+        format::<robowire::pixy2::Request>(),
+        format::<robowire::pixy2::FirmwareType>(),
+        format::<robowire::pixy2::Version>(),
+        format::<robowire::pixy2::Resolution>(),
+        format::<robowire::pixy2::Rgb>(),
+        format::<robowire::pixy2::Response<'static>>(),
+        format::<robowire::pixy2::ResponseBuf>(),
     ];
     assert!(names.iter().all(|n| n.starts_with("robowire::")));
 }
@@ -240,4 +291,175 @@ fn serde_omnitiles_telemetry() {
     let json = serde_json::to_string(&nan).unwrap();
     assert!(json.contains(r#""ax":null"#), "{json}");
     assert!(serde_json::from_str::<Telemetry>(&json).is_err());
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_pixy2_requests() {
+    use robowire::pixy2::{
+        ChangeProg, Form, GetBlocks, Host, MessageBuf, Packet, ProgName, Request, SetServos,
+    };
+
+    json_round_trip(
+        &Packet::new(
+            Form::NoChecksum,
+            Request::from(GetBlocks {
+                sigmap: GetBlocks::ALL,
+                max_blocks: 4,
+            }),
+        ),
+        r#"{"form":"NoChecksum","body":{"GetBlocks":{"sigmap":255,"max_blocks":4}}}"#,
+    );
+    json_round_trip(
+        &MessageBuf::Request(Request::from(SetServos { pan: 500, tilt: 20 })),
+        r#"{"Request":{"SetServos":{"pan":500,"tilt":20}}}"#,
+    );
+
+    // A program name is its payload bytes, padding included.
+    let line = Request::from(ChangeProg(ProgName::LINE_TRACKING));
+    let json = serde_json::to_string(&line).unwrap();
+    assert!(
+        json.starts_with(r#"{"ChangeProg":[108,105,110,101,95,"#),
+        "{json}"
+    );
+    assert_eq!(json.matches(',').count(), 32, "33 bytes: {json}");
+    assert_eq!(serde_json::from_str::<Request>(&json).unwrap(), line);
+    let short = ProgName::from_payload(b"video").unwrap();
+    json_round_trip(&short, "[118,105,100,101,111]");
+    let too_long = format!("[{}]", ["120"; 65].join(","));
+    let err = serde_json::from_str::<ProgName>(&too_long).unwrap_err();
+    assert!(err.to_string().contains("at most 64 bytes"), "{err}");
+
+    json_round_trip(
+        &robowire::pixy2::Framing::<Host>::new().checksum_only(),
+        r#"{"checksum_only":true,"side":null}"#,
+    );
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_pixy2_owned_blocks_response() {
+    use robowire::pixy2::{self, Block, BlocksBuf, Packet, Response, ResponseBuf, MAX_BLOCKS};
+
+    let bytes = [
+        0xaf, 0xc1, 0x21, 0x0e, 0xb7, 0x01, 0x01, 0x00, 0x64, 0x00, 0x32, 0x00, 0x14, 0x00, 0x0a,
+        0x00, 0x00, 0x00, 0x03, 0xff,
+    ];
+    let mut decoder = pixy2::host_decoder();
+    let owned: Vec<Packet<ResponseBuf>> = decoder
+        .feed(&bytes)
+        .map(|event| event.unwrap().message)
+        .collect();
+    assert_eq!(owned.len(), 1);
+    let block_json =
+        r#"{"signature":1,"x":100,"y":50,"width":20,"height":10,"angle":0,"index":3,"age":255}"#;
+    json_round_trip(
+        &owned[0],
+        &format!(r#"{{"form":"Checksum","body":{{"Blocks":[{block_json}]}}}}"#),
+    );
+
+    // The borrowed response, straight from the frame, serializes as the owned one.
+    let mut input = &bytes[..];
+    let mut fresh = pixy2::host_decoder();
+    let frame = fresh.decode(&mut input).unwrap().unwrap();
+    let view: Response<'_> = frame.message.body;
+    assert_eq!(
+        serde_json::to_string(&view).unwrap(),
+        serde_json::to_string(&owned[0].body).unwrap()
+    );
+
+    // At most 18 blocks.
+    let full = BlocksBuf::from_blocks(&[Block::default(); MAX_BLOCKS]).unwrap();
+    let json = serde_json::to_string(&full).unwrap();
+    assert_eq!(serde_json::from_str::<BlocksBuf>(&json).unwrap(), full);
+    let nineteen = format!("[{block_json},{}]", &json[1..json.len() - 1]);
+    let err = serde_json::from_str::<BlocksBuf>(&nineteen).unwrap_err();
+    assert!(err.to_string().contains("at most 18"), "{err}");
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_pixy2_owned_features_response() {
+    use robowire::pixy2::{
+        Barcode, DeviceError, Error, Features, FeaturesBuf, Intersection, IntersectionLine,
+        Malformed, PairError, Response, ResponseBuf, Vector,
+    };
+
+    let vector = Vector {
+        x0: 10,
+        y0: 51,
+        x1: 40,
+        y1: 2,
+        index: 7,
+        flags: 0,
+    };
+    let barcode = Barcode {
+        x: 30,
+        y: 20,
+        flags: 0,
+        code: 5,
+    };
+    let features = FeaturesBuf::from_parts(&[vector], &[], &[barcode]).unwrap();
+    json_round_trip(
+        &ResponseBuf::Features(features),
+        r#"{"Features":[1,6,10,51,40,2,7,0,4,4,30,20,0,5]}"#,
+    );
+    assert_eq!(
+        serde_json::to_string(&Response::Features(features.view())).unwrap(),
+        r#"{"Features":[1,6,10,51,40,2,7,0,4,4,30,20,0,5]}"#
+    );
+
+    // Intersections and sections of unknown types keep every byte.
+    let mut slots = [IntersectionLine::default(); 6];
+    slots[0] = IntersectionLine {
+        index: 1,
+        reserved: 9,
+        angle: -90,
+    };
+    let crossing = Intersection {
+        x: 39,
+        y: 20,
+        n: 1,
+        reserved: 0,
+        slots,
+    };
+    let with_crossing = FeaturesBuf::from_parts(&[vector], &[crossing], &[]).unwrap();
+    let mut payload = with_crossing.view().as_bytes().to_vec();
+    payload.extend_from_slice(&[0x08, 0x02, 0xaa, 0xbb]);
+    let unknown = FeaturesBuf::from_payload(&payload).unwrap();
+    let json = serde_json::to_string(&unknown).unwrap();
+    let back = serde_json::from_str::<FeaturesBuf>(&json).unwrap();
+    assert_eq!(back, unknown);
+    assert_eq!(back.view().intersections().next(), Some(crossing));
+
+    // Payloads a view would refuse are refused.
+    for bad in [
+        "[2,3,0,0,0]", // not whole intersections
+        "[1,6,0,0,0]", // section past the end
+        "[2,28,0,0,7,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0]", // 7 lines
+    ] {
+        assert!(serde_json::from_str::<FeaturesBuf>(bad).is_err(), "{bad}");
+    }
+    let too_long = format!("[{}]", ["0"; 256].join(","));
+    let err = serde_json::from_str::<FeaturesBuf>(&too_long).unwrap_err();
+    assert!(err.to_string().contains("at most 255 bytes"), "{err}");
+
+    // A borrowed view deserializes only from borrowed bytes, never from JSON's array.
+    assert!(serde_json::from_str::<Features<'_>>("[1,6,10,51,40,2,7,0]").is_err());
+
+    json_round_trip(
+        &ResponseBuf::Error(DeviceError::Unknown(-9)),
+        r#"{"Error":{"Unknown":-9}}"#,
+    );
+    json_round_trip(
+        &Error::Malformed {
+            packet_type: 0x31,
+            what: Malformed::IntersectionLines { n: 7 },
+        },
+        r#"{"Malformed":{"packet_type":49,"what":{"IntersectionLines":{"n":7}}}}"#,
+    );
+    json_round_trip(
+        &PairError::Device(DeviceError::Busy),
+        r#"{"Device":"Busy"}"#,
+    );
 }
