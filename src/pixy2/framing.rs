@@ -163,6 +163,7 @@ impl Side for Any {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Framing<S> {
     checksum_only: bool,
+    #[cfg_attr(feature = "serde", serde(skip))]
     side: PhantomData<S>,
 }
 
