@@ -103,6 +103,10 @@ pub(crate) fn check_room(out: &[u8], needed: usize) -> Result<(), EncodeError> {
 }
 
 /// An owned frame of at most `N` bytes, dereferencing to its bytes.
+///
+/// With the `serde` feature it is written as its bytes (a byte string; an
+/// array of numbers in JSON); deserializing refuses more than `N` bytes. With
+/// `defmt` it prints its bytes in hex.
 #[derive(Clone, Copy)]
 pub struct FrameBuf<const N: usize> {
     bytes: [u8; N],
@@ -172,5 +176,28 @@ impl<const N: usize> fmt::Debug for FrameBuf<N> {
             write!(f, "{b:02x}")?;
         }
         write!(f, ")")
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<const N: usize> serde::Serialize for FrameBuf<N> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        crate::serde_support::serialize_bytes(&**self, serializer)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de, const N: usize> serde::Deserialize<'de> for FrameBuf<N> {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let mut frame = Self::new();
+        frame.len = crate::serde_support::bytes_into(deserializer, &mut frame.bytes, "a frame")?;
+        Ok(frame)
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl<const N: usize> defmt::Format for FrameBuf<N> {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(f, "FrameBuf({=[u8]:02x})", &**self)
     }
 }

@@ -11,6 +11,8 @@ pub mod encode;
 pub mod io;
 pub mod omnitiles;
 pub mod pixy2;
+#[cfg(feature = "serde")]
+mod serde_support;
 pub mod stream;
 pub mod telemetrix;
 

@@ -24,6 +24,8 @@
 use core::fmt;
 
 /// What a [`Framing`] says about the bytes that begin at a candidate start.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Check<E> {
     /// The bytes are a prefix of something that could still become a frame; the
@@ -96,12 +98,23 @@ pub trait Framing {
 }
 
 /// A decoded frame: where it was in the stream, its bytes and its message.
+///
+/// With the `serde` feature, `raw` is written as a byte string (an array of
+/// numbers in JSON) and deserializing borrows it from the input, which only
+/// formats that hand out borrowed bytes can do (postcard, bincode; not
+/// JSON). To keep a frame in any format, serialize [`Framed`] instead.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Frame<'a, M> {
     /// Offset of the frame's first byte, counted from the first byte the decoder
     /// was ever given.
     pub offset: u64,
     /// The frame's bytes on the wire.
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_support::serialize_bytes")
+    )]
     pub raw: &'a [u8],
     /// The typed message.
     pub message: M,

@@ -2,6 +2,8 @@
 
 /// A rejected OmniTiles candidate. Never fatal: the decoder has already
 /// dropped the candidate's start byte and carries on.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {

@@ -27,6 +27,8 @@ use crate::stream::{self, Check};
 /// soon as it is complete. On a clean stream of any mix of the enabled layouts
 /// this gives no false and no lost frames; in noise, a short frame followed
 /// by garbage is dropped ([`Error::Unconfirmed`]) rather than guessed at.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Framing {
     commands: bool,

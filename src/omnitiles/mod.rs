@@ -79,6 +79,8 @@ pub fn checksum(id_and_payload: &[u8]) -> u8 {
 }
 
 /// Any OmniTiles message.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Packet {
     /// Host → tile.

@@ -9,6 +9,8 @@ use core::slice::ChunksExact;
 use crate::encode::EncodeError;
 
 /// One detected block, 14 bytes on the wire.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Block {
     /// 1..=7 for a plain signature; above 7 a colour code: one octal digit
@@ -77,6 +79,11 @@ pub const MAX_BLOCKS: usize = 18;
 const MAX_BYTES: usize = MAX_BLOCKS * Block::SIZE;
 
 /// A blocks payload, borrowed: 14·k bytes, k ≤ 18, read on demand.
+///
+/// With the `serde` feature it serializes as a sequence of [`Block`]s, as
+/// [`BlocksBuf`] does. It does not deserialize: its blocks are decoded from
+/// wire bytes, so there is nothing in a serialized form to borrow; deserialize
+/// a [`BlocksBuf`] (or a [`ResponseBuf`](super::ResponseBuf)) instead.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Blocks<'a> {
     bytes: &'a [u8],
@@ -153,6 +160,7 @@ impl<'a> IntoIterator for &Blocks<'a> {
 }
 
 /// Iterator over the blocks of a [`Blocks`] view or a [`BlocksBuf`].
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone)]
 pub struct BlockIter<'a> {
     chunks: ChunksExact<'a, u8>,
@@ -180,6 +188,9 @@ impl ExactSizeIterator for BlockIter<'_> {}
 impl FusedIterator for BlockIter<'_> {}
 
 /// An owned blocks payload: up to 18 blocks in a fixed array (no allocation).
+///
+/// With the `serde` feature it serializes as a sequence of [`Block`]s;
+/// deserializing refuses more than 18.
 #[derive(Clone, Copy)]
 pub struct BlocksBuf {
     bytes: [u8; MAX_BYTES],
@@ -273,5 +284,70 @@ impl<'a> IntoIterator for &'a BlocksBuf {
     type IntoIter = BlockIter<'a>;
     fn into_iter(self) -> BlockIter<'a> {
         self.iter()
+    }
+}
+
+#[cfg(feature = "serde")]
+impl serde::Serialize for Blocks<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.iter())
+    }
+}
+
+#[cfg(feature = "serde")]
+impl serde::Serialize for BlocksBuf {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serde::Serialize::serialize(&self.view(), serializer)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for BlocksBuf {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct BlocksVisitor;
+
+        impl<'de> serde::de::Visitor<'de> for BlocksVisitor {
+            type Value = BlocksBuf;
+
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, "a sequence of at most {MAX_BLOCKS} Pixy2 blocks")
+            }
+
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<BlocksBuf, A::Error> {
+                let mut buf = BlocksBuf::new();
+                while let Some(block) = seq.next_element::<Block>()? {
+                    if buf.push(block).is_err() {
+                        return Err(serde::de::Error::invalid_length(MAX_BLOCKS + 1, &self));
+                    }
+                }
+                Ok(buf)
+            }
+        }
+
+        deserializer.deserialize_seq(BlocksVisitor)
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl defmt::Format for Blocks<'_> {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(f, "[");
+        for (i, block) in self.iter().enumerate() {
+            if i > 0 {
+                defmt::write!(f, ", ");
+            }
+            defmt::write!(f, "{}", block);
+        }
+        defmt::write!(f, "]");
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl defmt::Format for BlocksBuf {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::Format::format(&self.view(), f)
     }
 }

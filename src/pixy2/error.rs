@@ -8,6 +8,8 @@
 /// decoder reports them and goes on. What the *device* reports in an ERROR
 /// packet is a [`DeviceError`] inside a successfully decoded
 /// [`Response::Error`](super::Response::Error).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
@@ -77,6 +79,8 @@ pub enum Error {
 }
 
 /// What is wrong inside a payload whose length fits its type.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum Malformed {
@@ -127,6 +131,8 @@ pub enum Malformed {
 /// These are the device's `SER_ERROR_*` codes. The official host library
 /// reuses −3 and −4 for its own local failures; robowire never does: local
 /// failures are [`Error`]s.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
 pub enum DeviceError {
     /// −1: general failure (e.g. reverseVector with no primary vector).

@@ -42,6 +42,8 @@ pub const FTYPE_INTERSECTION: u8 = 0x02;
 pub const FTYPE_BARCODE: u8 = 0x04;
 
 /// A tracked line segment, tail (x0, y0) to head (x1, y1). 6 bytes.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Vector {
     /// Tail column.
@@ -89,6 +91,8 @@ impl Element for Vector {
 }
 
 /// One line leaving an intersection. 4 bytes.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct IntersectionLine {
     /// The line's tracking index.
@@ -105,6 +109,8 @@ pub const INTERSECTION_SLOTS: usize = 6;
 
 /// An intersection with its lines. 28 bytes: x, y, n, reserved and six line
 /// slots (slots ≥ n are zero when the device sends them).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Intersection {
     /// Column.
@@ -163,6 +169,8 @@ impl Element for Intersection {
 }
 
 /// A detected barcode. 4 bytes.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Barcode {
     /// Column.
@@ -245,6 +253,13 @@ fn next_section<'a>(rest: &mut &'a [u8]) -> Option<(u8, &'a [u8])> {
 }
 
 /// A validated line features payload, borrowed.
+///
+/// With the `serde` feature it serializes as the payload bytes (a byte
+/// string; an array of numbers in JSON), as [`FeaturesBuf`] does, so unknown
+/// sections and reserved bytes survive. Deserializing borrows the bytes and
+/// checks them as [`Features::new`] does; only formats that hand out borrowed
+/// bytes can do that (postcard, bincode; not JSON): deserialize a
+/// [`FeaturesBuf`] for any format.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Features<'a> {
     bytes: &'a [u8],
@@ -306,6 +321,7 @@ impl fmt::Debug for Features<'_> {
 }
 
 /// One section of a line features payload.
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone)]
 pub enum Section<'a> {
     /// A vector section (ftype 1).
@@ -324,6 +340,7 @@ pub enum Section<'a> {
 }
 
 /// Iterator over the sections of a [`Features`] view.
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone)]
 pub struct Sections<'a> {
     rest: &'a [u8],
@@ -346,6 +363,7 @@ impl<'a> Iterator for Sections<'a> {
 impl FusedIterator for Sections<'_> {}
 
 /// Iterator over the elements of one section.
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone)]
 pub struct Elements<'a, T> {
     chunks: ChunksExact<'a, u8>,
@@ -377,6 +395,7 @@ impl<T: Element> ExactSizeIterator for Elements<'_, T> {}
 impl<T: Element> FusedIterator for Elements<'_, T> {}
 
 /// Iterator over every element of one kind, across all its sections.
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone)]
 pub struct FeatureIter<'a, T> {
     rest: &'a [u8],
@@ -412,6 +431,10 @@ impl<T: Element> FusedIterator for FeatureIter<'_, T> {}
 
 /// An owned line features payload in a fixed 255-byte array (no allocation).
 /// It keeps the exact bytes, so it re-encodes to what was received.
+///
+/// With the `serde` feature it serializes as the payload bytes (a byte
+/// string; an array of numbers in JSON). Deserializing refuses more than 255
+/// bytes and a payload that [`Features::new`] rejects.
 #[derive(Clone, Copy)]
 pub struct FeaturesBuf {
     bytes: [u8; MAX_PAYLOAD],
@@ -508,5 +531,63 @@ impl Eq for FeaturesBuf {}
 impl fmt::Debug for FeaturesBuf {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         self.view().fmt(f)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl serde::Serialize for Features<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        crate::serde_support::serialize_bytes(self.bytes, serializer)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de: 'a, 'a> serde::Deserialize<'de> for Features<'a> {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let bytes = <&'a [u8] as serde::Deserialize>::deserialize(deserializer)?;
+        Features::new(bytes).map_err(serde::de::Error::custom)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl serde::Serialize for FeaturesBuf {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serde::Serialize::serialize(&self.view(), serializer)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for FeaturesBuf {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let mut buf = FeaturesBuf::new();
+        let len = crate::serde_support::bytes_into(
+            deserializer,
+            &mut buf.bytes,
+            "a Pixy2 line features payload",
+        )?;
+        validate(&buf.bytes[..len]).map_err(serde::de::Error::custom)?;
+        buf.len = len as u8;
+        Ok(buf)
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl defmt::Format for Features<'_> {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(f, "[");
+        for (i, section) in self.sections().enumerate() {
+            if i > 0 {
+                defmt::write!(f, ", ");
+            }
+            defmt::write!(f, "{}", section);
+        }
+        defmt::write!(f, "]");
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl defmt::Format for FeaturesBuf {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::Format::format(&self.view(), f)
     }
 }

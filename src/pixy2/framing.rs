@@ -59,15 +59,21 @@ pub trait Side: sealed::Sealed + Copy + Eq + core::hash::Hash + core::fmt::Debug
 }
 
 /// The host's side of the link: accepts responses.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Host;
 
 /// The device's side of the link (firmware, a simulator): accepts requests,
 /// with the device's 64-byte receive limit.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Device;
 
 /// Both directions (captures, tooling): accepts requests and responses.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Any;
 
@@ -152,9 +158,12 @@ impl Side for Any {
 
 /// Pixy2 framing for [`StreamDecoder`](crate::StreamDecoder), for one
 /// [`Side`] of the link.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Framing<S> {
     checksum_only: bool,
+    #[cfg_attr(feature = "serde", serde(skip))]
     side: PhantomData<S>,
 }
 

@@ -68,6 +68,8 @@ pub mod packet_type {
 }
 
 /// The two frame forms (spec §2.1).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Form {
     /// `ae c1` · type · len · payload: what the official host sends.
@@ -127,6 +129,8 @@ pub fn checksum(payload: &[u8]) -> u16 {
 /// assert_eq!(&out[..n], &[0xaf, 0xc1, 0x18, 0x00, 0x00, 0x00]);
 /// # Ok::<(), robowire::EncodeError>(())
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Packet<M> {
     /// The frame form.
@@ -143,6 +147,11 @@ impl<M> Packet<M> {
 }
 
 /// A message of either direction, as an any-direction decoder yields it.
+///
+/// With the `serde` feature it serializes exactly as [`MessageBuf`] does, and
+/// only [`MessageBuf`] deserializes (see [`Response`]).
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Message<'a> {
     /// A host → device request.
@@ -152,6 +161,8 @@ pub enum Message<'a> {
 }
 
 /// The owned form of [`Message`].
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MessageBuf {
     /// A host → device request.

@@ -26,6 +26,8 @@ use super::request::{
 use super::response::{Resolution, Response, Rgb, Version};
 
 /// Why a response does not answer a request.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum PairError {
@@ -71,6 +73,8 @@ pub enum PairError {
 }
 
 /// The state changeProg reports.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ProgSwitch {
     /// RESULT 1: the program is running.

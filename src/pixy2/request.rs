@@ -21,6 +21,10 @@ use super::packet::{packet_type as ty, Body, Form, DEVICE_MAX_PAYLOAD};
 /// ([`ProgName::new`] does the same). The device matches the bytes up to the
 /// first NUL as a *prefix* of its program names (`"line"` selects
 /// `line_tracking`, an empty name program 0) and does not check the length.
+///
+/// With the `serde` feature it serializes as its payload bytes, padding
+/// included (a byte string; an array of numbers in JSON); deserializing
+/// refuses more than 64 bytes.
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ProgName {
     bytes: [u8; DEVICE_MAX_PAYLOAD],
@@ -117,10 +121,14 @@ impl fmt::Debug for ProgName {
 
 /// 0x02 changeProg: switch programs. Answer: RESULT 1 = already running,
 /// 0 = switch pending (poll again); ERROR −3 for an unknown name.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ChangeProg(pub ProgName);
 
 /// 0x0c getResolution. Answer: resolution (0x0d).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct GetResolution {
     /// Reserved "type" byte; send 0. Any value is passed through.
@@ -129,14 +137,20 @@ pub struct GetResolution {
 
 /// 0x0e getVersion (also the ping: ERROR −2 until boot completes). Answer:
 /// version (0x0f).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct GetVersion;
 
 /// 0x10 setCameraBrightness. Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct SetCameraBrightness(pub u8);
 
 /// 0x12 setServos. Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct SetServos {
     /// Servo 0 (pan), 0..=1000. Larger values are passed through: the device
@@ -152,6 +166,8 @@ impl SetServos {
 }
 
 /// 0x14 setLED: override the RGB LED. Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct SetLed {
     /// Red.
@@ -163,6 +179,8 @@ pub struct SetLed {
 }
 
 /// 0x16 setLamp. Nonzero = on; bytes are passed through. Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct SetLamp {
     /// The two white LEDs on the top edge.
@@ -182,11 +200,15 @@ impl SetLamp {
 }
 
 /// 0x18 getFPS. Answer: RESULT = frames per second.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct GetFps;
 
 /// 0x20 getBlocks (colour connected components). Answer: blocks (0x21), at
 /// most `min(max_blocks, 18)`, largest first; ERROR −2 when no new frame yet.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct GetBlocks {
     /// Which signatures: bit k = signature k+1 ([`GetBlocks::SIG1`] …),
@@ -229,6 +251,8 @@ impl GetBlocks {
 
 /// 0x30 getFeatures (line tracking). Answer: line features (0x31); ERROR −2
 /// when no new frame yet.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct GetFeatures {
     /// 0 = main features ([`GetFeatures::MAIN`]); any nonzero value = all
@@ -254,6 +278,8 @@ impl GetFeatures {
 }
 
 /// 0x36 setMode: a bitmap of line-tracking modes. Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct SetMode(pub u8);
 
@@ -268,24 +294,34 @@ impl SetMode {
 
 /// 0x38 setVector: choose the primary vector by tracking index. Answer:
 /// RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct SetVector(pub u8);
 
 /// 0x3a setNextTurn: degrees at the next intersection (0 = straight up the
 /// image, +90 = left, −90 = right). Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct SetNextTurn(pub i16);
 
 /// 0x3c setDefaultTurn: degrees when no next turn is set, as
 /// [`SetNextTurn`]. Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct SetDefaultTurn(pub i16);
 
 /// 0x3e reverseVector. Answer: RESULT 0, or ERROR −1 with no primary vector.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct ReverseVector;
 
 /// 0x70 getRGB: the colour at a pixel. Answer: RESULT `0x00RRGGBB`.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct GetRgb {
     /// Column, 0..=315 (the device clamps larger values).
@@ -308,6 +344,8 @@ impl GetRgb {
 }
 
 /// Any host → device request.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Request {
     /// 0x02 changeProg.
@@ -602,5 +640,37 @@ impl Body for Request {
 
     fn default_form(&self) -> Form {
         Form::NoChecksum
+    }
+}
+
+#[cfg(feature = "serde")]
+impl serde::Serialize for ProgName {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        crate::serde_support::serialize_bytes(self.as_payload(), serializer)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for ProgName {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let mut bytes = [0u8; DEVICE_MAX_PAYLOAD];
+        let len =
+            crate::serde_support::bytes_into(deserializer, &mut bytes, "a Pixy2 program name")?;
+        Ok(Self {
+            bytes,
+            len: len as u8,
+        })
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl defmt::Format for ProgName {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(
+            f,
+            "ProgName {{ name: {=[u8]:a}, payload_len: {=u8} }}",
+            self.name(),
+            self.len
+        )
     }
 }

@@ -13,6 +13,8 @@ use super::packet::{packet_type as ty, Body, Form};
 
 /// The firmware type field of a version response: 10 bytes, NUL-padded, not
 /// NUL-terminated when all 10 are used. All 10 bytes are kept as received.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct FirmwareType(pub [u8; 10]);
 
@@ -54,6 +56,8 @@ impl fmt::Debug for FirmwareType {
 }
 
 /// The version response (0x0f, 16 bytes).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Version {
     /// Hardware version (e.g. 0x2200).
@@ -97,6 +101,8 @@ impl Version {
 
 /// The resolution response (0x0d): 316 × 208 for blocks and video, 79 × 52
 /// (the line grid) in line tracking.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Resolution {
     /// Frame width.
@@ -106,6 +112,8 @@ pub struct Resolution {
 }
 
 /// A colour, as getRGB answers it: RESULT `0x00RRGGBB` (wire bytes B, G, R, 0).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Rgb {
     /// Red.
@@ -135,6 +143,12 @@ impl Rgb {
 
 /// Any device → host response, borrowing blocks and line features from the
 /// frame.
+///
+/// With the `serde` feature it serializes exactly as [`ResponseBuf`] does, and
+/// only [`ResponseBuf`] deserializes ([`Blocks`] has nothing to borrow from a
+/// serialized form).
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Response<'a> {
     /// 0x01: the generic result, a full i32 (frames per second, getRGB's
@@ -153,6 +167,8 @@ pub enum Response<'a> {
 }
 
 /// The owned form of [`Response`], with fixed-capacity blocks and features.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ResponseBuf {
     /// As [`Response::Result`].

@@ -143,6 +143,8 @@ pub(crate) const fn command_len_range(dialect: Dialect, id: u8) -> Option<(u8, u
 }
 
 /// Pull resistor of a digital input (SET_PIN_MODE modes 0, 3, 4).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Pull {
     /// No pull (mode 0).
@@ -155,6 +157,8 @@ pub enum Pull {
 }
 
 /// A pin mode with its SET_PIN_MODE tail (spec §4.1).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum PinMode {
     /// Digital input (modes 0/3/4, tail `report_enable`).
@@ -179,6 +183,8 @@ pub enum PinMode {
 }
 
 /// One pin of a PWM_WRITE.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct PwmPin {
     /// GPIO number (< 30).
@@ -191,6 +197,8 @@ pub struct PwmPin {
 pub type PwmPins = List<PwmPin, 9>;
 
 /// MODIFY_REPORTING (spec §4.2).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ModifyReporting {
     /// Disable all analog and digital reporting (type 0, pin 0).
@@ -220,6 +228,8 @@ pub enum ModifyReporting {
 }
 
 /// A colour for the neopixel commands.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Rgb {
     /// Red.
@@ -231,6 +241,8 @@ pub struct Rgb {
 }
 
 /// Encoder kind of ENCODER_NEW.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum EncoderKind {
     /// Single pin (1); `pin_b` must be 0.
@@ -240,6 +252,8 @@ pub enum EncoderKind {
 }
 
 /// Pull resistors of ENCODER_NEW's pins (mirte 1.3 only; bit 0 up, bit 1 down).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Pulls {
     /// Pull-ups.
@@ -256,6 +270,14 @@ pub struct Pulls {
 /// its command buffer); the encoder refuses values the firmware would
 /// mishandle (pins ≥ 30, counts above the spec §4 maxima, ids the dialect does
 /// not define).
+///
+/// With the `serde` feature, byte fields serialize as sequences of numbers
+/// whether `B` is `&[u8]` or a [`Payload`], so a [`CommandRef`] and its
+/// [`OwnedCommand`] serialize alike. Deserialize an [`OwnedCommand`]: its
+/// fields refuse more bytes than they hold. A [`CommandRef`] deserializes only
+/// from formats that hand out borrowed bytes (postcard, bincode; not JSON).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Command<B> {
     /// 0 SERIAL_LOOP_BACK: the Pico echoes `byte` in report 0.

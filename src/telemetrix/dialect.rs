@@ -2,6 +2,8 @@
 
 /// Which firmware the codec talks to. The differences that are a table entry
 /// in spec §10 are covered; everything else is taken to be as in mirte 1.3.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Dialect {
     /// mirte firmware 1.3 (`ArendJan/Telemetrix4RpiPico`), the default: command

@@ -5,6 +5,12 @@ use crate::EncodeError;
 /// Why a candidate frame was rejected. Telemetrix has no checksum, so every
 /// rejection comes from the frame's shape: an id the dialect does not define, a
 /// `LEN` that id cannot have, or a field value the firmware never sends.
+///
+/// With the `serde` feature it serializes but does not deserialize:
+/// [`OutOfRange`](Error::OutOfRange)'s `&'static str` field cannot be read
+/// back from input that does not live forever.
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {

@@ -22,6 +22,8 @@ fn skip_zeros(bytes: &[u8]) -> usize {
 /// `LEN` is possible for that id (exact, or by the count / sub-type bytes of
 /// spec §11), and every field is one the firmware sends (pins < 30, flags
 /// 0/1, …). Anything else is rejected and the engine resyncs by one byte.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct ReportFraming {
     dialect: Dialect,
@@ -165,6 +167,8 @@ impl stream::Framing for ReportFraming {
 /// starts. A candidate is accepted only if its id is a command of the
 /// dialect, its `LEN` fits that command, and every field is one the encoder
 /// would emit.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct CommandFraming {
     dialect: Dialect,

@@ -9,6 +9,10 @@ use crate::EncodeError;
 
 /// Up to `N` items of `T` stored inline (an array and a length). Only the first
 /// `len` items count: equality, hashing and `Debug` ignore the rest.
+///
+/// With the `serde` feature a list serializes as the sequence of its items
+/// (a [`Payload`] as a sequence of numbers, like `&[u8]`); deserializing
+/// refuses more than `N` items. With `defmt` it prints its items.
 #[derive(Clone, Copy)]
 pub struct List<T, const N: usize> {
     items: [T; N],
@@ -123,5 +127,55 @@ impl<'a, T, const N: usize> IntoIterator for &'a List<T, N> {
 
     fn into_iter(self) -> Self::IntoIter {
         self.as_slice().iter()
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<T: serde::Serialize, const N: usize> serde::Serialize for List<T, N> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.as_slice())
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de, T, const N: usize> serde::Deserialize<'de> for List<T, N>
+where
+    T: serde::Deserialize<'de> + Copy + Default,
+{
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct ListVisitor<T, const N: usize>(core::marker::PhantomData<T>);
+
+        impl<'de, T, const N: usize> serde::de::Visitor<'de> for ListVisitor<T, N>
+        where
+            T: serde::Deserialize<'de> + Copy + Default,
+        {
+            type Value = List<T, N>;
+
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, "a sequence of at most {N} items")
+            }
+
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<List<T, N>, A::Error> {
+                let mut list = List::new();
+                while let Some(item) = seq.next_element()? {
+                    if list.push(item).is_err() {
+                        return Err(serde::de::Error::invalid_length(N + 1, &self));
+                    }
+                }
+                Ok(list)
+            }
+        }
+
+        deserializer.deserialize_seq(ListVisitor::<T, N>(core::marker::PhantomData))
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl<T: defmt::Format, const N: usize> defmt::Format for List<T, N> {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(f, "{=[?]}", self.as_slice())
     }
 }

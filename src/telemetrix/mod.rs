@@ -139,6 +139,7 @@ pub(crate) const fn analog_pin_ok(dialect: Dialect, pin: u8) -> bool {
 /// A message paired with the dialect to encode it for, so that
 /// [`FrameBuf::encode`](crate::FrameBuf::encode) and `encode_buf` work for
 /// every dialect. Made by `in_dialect` on [`Command`] and [`Report`].
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy)]
 pub struct InDialect<'m, M> {
     message: &'m M,

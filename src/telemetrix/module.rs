@@ -17,6 +17,8 @@ use crate::EncodeError;
 pub const MODULE_INIT_MAX: usize = 26;
 
 /// Module types (spec §7).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ModuleType {
     /// 0: PCA9685 PWM expander.
@@ -48,6 +50,8 @@ impl ModuleType {
 }
 
 /// PCA9685 address and frequency (applied only when both are sent).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Pca9685Config {
     /// 7-bit address (default 0x40).
@@ -57,6 +61,8 @@ pub struct Pca9685Config {
 }
 
 /// A module's MODULE_NEW init bytes, by type.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ModuleInit<B> {
     /// `port [, addr, u16 freq_hz]`.
@@ -96,6 +102,8 @@ pub enum ModuleInit<B> {
 }
 
 /// MODULE_NEW (command 33).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ModuleNew<B> {
     /// `00, type`: ask whether a type is supported (answered by report 33).
@@ -376,6 +384,8 @@ fn data_reader(data: &[u8]) -> Reader<'_> {
 }
 
 /// Where a Hiwonder servo should move.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct ServoMove {
     /// Servo index in the module's list.
@@ -389,6 +399,8 @@ pub struct ServoMove {
 /// Hiwonder servo data (module type 1), spec §7.1. Servos are addressed by
 /// their index in the init list. The firmware drops all of it unless the last
 /// PING is less than 2 s old.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum HiwonderCommand {
     /// 1 SET_ANGLE: 1..=5 moves.
@@ -581,6 +593,8 @@ impl ModuleCommand for HiwonderCommand {
 }
 
 /// One PCA9685 channel setting.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Pca9685Channel {
     /// Channel 0..=15.
@@ -593,6 +607,8 @@ pub struct Pca9685Channel {
 
 /// PCA9685 data (module type 0), spec §7.2: 1..=5 channel settings,
 /// big-endian.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Pca9685Command {
     /// The channels to set.
@@ -630,6 +646,8 @@ impl ModuleCommand for Pca9685Command {
 }
 
 /// SSD1306 data (module type 3), spec §7.3.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Ssd1306Command {
     /// 0 TEXT: at most 26 characters, appended to the text buffer.
@@ -698,6 +716,8 @@ impl ModuleCommand for Ssd1306Command {
 }
 
 /// Shutdown relay data (module type 2), spec §7.4.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum RelayCommand {
     /// `[1]`: start the countdown (and stop PINGs feeding the watchdog).
@@ -726,6 +746,8 @@ impl ModuleCommand for RelayCommand {
 }
 
 /// A Hiwonder servo position in a positions report.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct ServoPosition {
     /// Servo index.
@@ -736,6 +758,13 @@ pub struct ServoPosition {
 
 /// The positions of a Hiwonder positions report: `k × {idx, u16 centideg}`,
 /// k ≥ 1, kept as the raw bytes `B`.
+///
+/// With the `serde` feature it serializes as the raw bytes alone; like
+/// [`from_raw`](Self::from_raw), deserializing leaves them to be checked when
+/// encoded.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", serde(transparent))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ServoPositions<B> {
     raw: B,
@@ -789,6 +818,8 @@ impl<const N: usize> ServoPositions<Payload<N>> {
 }
 
 /// Completion kind of an SSD1306 report.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Ssd1306Done {
     /// After TEXT_DONE (1).
@@ -798,6 +829,8 @@ pub enum Ssd1306Done {
 }
 
 /// The data of a MODULE_REPORT (report 34), by module type and subtype.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ModuleReport<B> {
     /// Hiwonder subtype 0: positions of changed servos (and each at least once

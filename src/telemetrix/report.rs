@@ -179,6 +179,8 @@ const fn feature_extras(msg_type: u8) -> Extras {
 }
 
 /// What a sonar reading means.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SonarReading {
     /// A distance, in hundredths of a centimetre.
@@ -202,6 +204,8 @@ pub const SONAR_OUT_OF_RANGE: u16 = 0xFFFD;
 pub const SONAR_STALE: u16 = 0xFFFE;
 
 /// SONAR_DISTANCE (report 11), in the form the dialect and `LEN` select.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Sonar {
     /// mirte 1.3, `LEN` 5: `trig, echo, u16 cm` (or a sentinel).
@@ -299,6 +303,14 @@ impl Sonar {
 /// A report, Pico → host. `B` holds the variable byte fields: `&[u8]` when
 /// parsed from a frame (see [`ReportRef`]) or for encoding borrowed data,
 /// [`Payload`] in the owned form ([`OwnedReport`]).
+///
+/// With the `serde` feature a [`ReportRef`] and its [`OwnedReport`] serialize
+/// alike (byte fields as sequences of numbers). Deserialize an
+/// [`OwnedReport`]; a [`ReportRef`] deserializes only from formats that hand
+/// out borrowed bytes (postcard, bincode; not JSON). Sensor floats are
+/// written as numbers, so JSON loses NaN and infinities (written as `null`).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Report<B> {
     /// 0: loopback echo.
