@@ -1,6 +1,7 @@
 //! Every integration covers every protocol: Pixy2 and Telemetrix through the
 //! tokio-util codec and the embedded-io packet reader and writer (OmniTiles
 //! has its own, fuller tests in io_tokio.rs and io_embedded.rs).
+#![cfg(any(feature = "tokio-util-07", feature = "embedded-io-07"))]
 
 fn hex(s: &str) -> Vec<u8> {
     s.split_whitespace()
