@@ -10,6 +10,7 @@ mod driver;
 mod input;
 mod json;
 mod omnitiles;
+mod pixy2;
 
 use clap::{Parser, Subcommand};
 use std::io;
@@ -58,12 +59,16 @@ enum Verb {
 enum DecodeProtocol {
     /// OmniTiles: host commands and tile telemetry (0xA5, id, payload, sum).
     Omnitiles(omnitiles::DecodeArgs),
+    /// Pixy2: host requests and device responses (ae c1 / af c1 frames).
+    Pixy2(pixy2::DecodeArgs),
 }
 
 #[derive(Debug, Subcommand)]
 enum EncodeProtocol {
     /// OmniTiles: commands and telemetry from JSON lines.
     Omnitiles(omnitiles::EncodeArgs),
+    /// Pixy2: requests and responses from JSON lines.
+    Pixy2(pixy2::EncodeArgs),
 }
 
 /// Why a run stopped early, and so its exit status.
@@ -134,6 +139,12 @@ fn run(verb: &Verb, out: &mut driver::Output) -> Result<Done, Failure> {
         Verb::Encode {
             protocol: EncodeProtocol::Omnitiles(args),
         } => omnitiles::encode(args, out).map(|()| Done::Encoded),
+        Verb::Decode {
+            protocol: DecodeProtocol::Pixy2(args),
+        } => pixy2::decode(args, out).map(Done::Decoded),
+        Verb::Encode {
+            protocol: EncodeProtocol::Pixy2(args),
+        } => pixy2::encode(args, out).map(|()| Done::Encoded),
     }
 }
 
