@@ -824,7 +824,11 @@ fn read_device_error(value: &Value) -> Result<DeviceError, String> {
     }
     read_int(value, -128, 127)
         .map(|code| DeviceError::from_code(code as i8))
-        .map_err(|e| format!("field `code` must be a device error name or {e}"))
+        .map_err(|_| {
+            format!(
+                "field `code` must be a device error name or an integer -128..=127, found {value}"
+            )
+        })
 }
 
 /// The sections of a features response, in order, into the exact payload.
@@ -913,7 +917,7 @@ fn read_intersection(i: &mut Obj<'_>) -> Result<[u8; INTERSECTION_LEN], String> 
         let unused = i.objects("unused_slots", INTERSECTION_SLOTS - n)?;
         if unused.len() != INTERSECTION_SLOTS - n {
             return Err(format!(
-                "field `{path}` must hold {} entries (6 slots, {n} lines), found {}",
+                "field `{path}` must hold {} entries (the slots after the lines), found {}",
                 INTERSECTION_SLOTS - n,
                 unused.len()
             ));
