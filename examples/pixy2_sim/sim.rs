@@ -652,7 +652,7 @@ impl Host<'_> {
                 Some(Ok(value)) => return Ok(value),
                 Some(Err(PairError::Device(DeviceError::Busy))) => {
                     self.learned.busy += 1;
-                    self.say(&format!("  {name}: busy (no new frame yet), asking again"));
+                    self.say(&format!("  {name}: busy, asking again"));
                 }
                 Some(Err(PairError::Device(DeviceError::ProgChanging))) => {
                     self.learned.prog_changing += 1;
