@@ -367,7 +367,7 @@ fn chunk_size_does_not_change_the_output() {
 #[test]
 fn capture_summary_and_events() {
     let r = decode_capture(&[], "4096");
-    assert_eq!(r.stderr, summary(81, 1483, 437, 2, 2, 0));
+    assert_eq!(r.stderr, summary(85, 1525, 457, 2, 2, 0));
     let events: Vec<&str> = r
         .lines()
         .into_iter()
@@ -396,7 +396,7 @@ fn capture_summary_and_events() {
     );
     // Without --errors only frames are printed, with the same summary.
     let quiet = decode(&["--hex", &capture_path()], b"");
-    assert_eq!(quiet.lines().len(), 81);
+    assert_eq!(quiet.lines().len(), 85);
     assert_eq!(quiet.stderr, r.stderr);
 }
 
@@ -432,7 +432,7 @@ fn from_names_who_sent_the_bytes() {
         .filter(|t| RESPONSES.contains(&t.as_str()))
         .cloned()
         .collect();
-    assert_eq!((requests.len(), responses.len()), (40, 41));
+    assert_eq!((requests.len(), responses.len()), (42, 43));
     // --from host: bytes the host sent, the requests; --from device: the
     // responses. Together they are everything --from any finds.
     assert_eq!(host, requests);
@@ -442,7 +442,7 @@ fn from_names_who_sent_the_bytes() {
     assert!(r
         .lines()
         .contains(&r#"{"offset":0,"error":"unknown_type","packet_type":14}"#));
-    assert_eq!(r.stderr, summary(41, 1483, 809, 1, 43, 0));
+    assert_eq!(r.stderr, summary(43, 1525, 839, 1, 45, 0));
 }
 
 #[test]
@@ -454,7 +454,7 @@ fn checksum_only_ignores_the_other_form() {
         .filter(|v| v.get("type").is_some())
         .collect();
     // Every answer, and the four requests the host sent with a checksum.
-    assert_eq!(frames.len(), 45);
+    assert_eq!(frames.len(), 47);
     assert!(frames.iter().all(|v| v["checksum"] == true));
     let requests: Vec<&str> = frames
         .iter()
@@ -580,7 +580,7 @@ fn round_trip(input: &[u8], extra: &[&str]) -> usize {
 fn decode_then_encode_reproduces_every_frame() {
     let capture = capture_bytes();
     let counts: Vec<usize> = CASES.iter().map(|x| round_trip(&capture, x)).collect();
-    assert_eq!(counts, [81, 40, 41, 45, 41, 45]);
+    assert_eq!(counts, [85, 42, 43, 47, 43, 47]);
     assert_eq!(round_trip(&hex(GOLDEN_HEX), &[]), 41);
 }
 

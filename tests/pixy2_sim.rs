@@ -76,9 +76,11 @@ fn host_learns_what_the_camera_shows() {
     }
 
     // Line features: an intersection (main mode reports it once, all mode
-    // again), barcode 5, and the primary vector reversed at the end.
+    // again), barcode 5 (main mode reports it when it is validated again),
+    // and the primary vector reversed once the line is back in view.
     assert_eq!(learned.intersections, [vec![-90, 0, 90], vec![-90, 0, 90]]);
-    assert_eq!(learned.barcodes, [5, 5]);
+    assert_eq!(learned.barcodes, [5, 5, 5]);
+    assert_eq!(learned.reversals, [false, true]);
     let last = learned.vectors.last().unwrap();
     assert_eq!((last.y0, last.y1), (0, 51));
     assert!(learned.vectors.iter().any(|v| v.flags == 0x04));
@@ -140,10 +142,10 @@ fn every_answer_in_the_capture_answers_the_request_before_it() {
     // that are no valid request got ERROR answers of their own.
     let stats = decoder.stats();
     assert_eq!(stats.checksum_errors, 2);
-    assert_eq!(requests, 40);
+    assert_eq!(requests, 42);
     assert_eq!(paired, 29);
-    // Booting, no new frame yet, program switches.
-    assert_eq!(refused, 10);
+    // Booting, no new frame yet, program switches, no line to reverse.
+    assert_eq!(refused, 12);
     assert_eq!(
         orphans,
         [

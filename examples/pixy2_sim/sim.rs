@@ -352,10 +352,15 @@ mod scene {
         BlocksBuf::from_blocks(&blocks).expect("at most 18 blocks")
     }
 
+    /// The line is lost from view on one frame of every five.
+    const LOST_EVERY: u32 = 5;
+
     /// The line under the robot: tail at the bottom edge, head at the top,
-    /// both drifting; `None` never happens here, but reverseVector is ready
-    /// for it.
+    /// both drifting; `None` while it is out of view.
     pub fn primary(frame: u32, reversed: bool) -> Option<Vector> {
+        if frame % LOST_EVERY == LOST_EVERY - 1 {
+            return None;
+        }
         let tail = (35 + tri(frame, 8)) as u8;
         let head = (35 + tri(frame * 2, 10)) as u8;
         let (x0, y0, x1, y1) = if reversed {
@@ -375,7 +380,7 @@ mod scene {
 
     /// An intersection, valid on three frames of every six.
     fn intersection(frame: u32) -> Option<Intersection> {
-        if !matches!(frame % 6, 2..=4) {
+        if !matches!(frame % 6, 4 | 5 | 0) {
             return None;
         }
         let mut slots = [IntersectionLine::default(); INTERSECTION_SLOTS];
@@ -573,12 +578,14 @@ pub struct Learned {
     pub ball: Vec<(u16, u16)>,
     /// Blocks per getBlocks answer.
     pub blocks_per_frame: Vec<usize>,
-    /// Primary vectors, intersections (line angles) and barcodes seen.
+    /// Every vector seen.
     pub vectors: Vec<Vector>,
     /// Angles of the lines of every intersection seen.
     pub intersections: Vec<Vec<i16>>,
     /// Barcodes seen.
     pub barcodes: Vec<u8>,
+    /// reverseVector attempts: whether each found a primary vector.
+    pub reversals: Vec<bool>,
     /// getRGB's answer.
     pub rgb: Option<Rgb>,
     /// Device errors answered to requests that do not exist or are malformed.
@@ -864,10 +871,23 @@ fn conversation(host: &mut Host<'_>) -> Result<(), AskError> {
 
     // Follow the line.
     for i in 0..6 {
-        if i == 4 {
+        if i == 1 {
             host.ask(SetNextTurn(90), NoChecksum, |()| ())?;
-            host.ask(ReverseVector, NoChecksum, |()| ())?;
-            host.say("next turn: left (90); primary vector reversed");
+            host.say("next turn: left (90)");
+        }
+        if i == 1 || i == 4 {
+            match host.ask(ReverseVector, NoChecksum, |()| ()) {
+                Ok(()) => {
+                    host.learned.reversals.push(true);
+                    host.say("primary vector reversed");
+                }
+                // ERROR -1: the line is out of view on this frame.
+                Err(AskError::Pair(PairError::Device(DeviceError::General))) => {
+                    host.learned.reversals.push(false);
+                    host.say("reverseVector: no primary vector to reverse");
+                }
+                Err(e) => return Err(e),
+            }
         }
         let scope = if i == 3 {
             GetFeatures::ALL
