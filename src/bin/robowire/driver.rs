@@ -195,7 +195,8 @@ pub fn summary(stats: &Stats) -> String {
         stats.bytes,
         stats.skipped,
         stats.checksum_errors,
-        stats.rejected,
+        // Candidates set aside by the resync verification are rejections too.
+        stats.rejected + stats.superseded,
         stats.malformed
     )
 }

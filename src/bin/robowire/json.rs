@@ -72,6 +72,29 @@ impl JsonLine {
         self.buf.push(b'}');
         self.first = false;
     }
+
+    /// A member whose value is an array of objects, one per item, each
+    /// written by `members` (which may nest further arrays and objects).
+    pub fn objects<T>(
+        &mut self,
+        key: &str,
+        items: impl IntoIterator<Item = T>,
+        mut members: impl FnMut(&mut JsonLine, T),
+    ) {
+        self.key(key);
+        self.buf.push(b'[');
+        for (i, item) in items.into_iter().enumerate() {
+            if i > 0 {
+                self.buf.push(b',');
+            }
+            self.buf.push(b'{');
+            self.first = true;
+            members(self, item);
+            self.buf.push(b'}');
+        }
+        self.buf.push(b']');
+        self.first = false;
+    }
 }
 
 /// A value that can be written as one JSON scalar.
@@ -120,6 +143,12 @@ widen_scalar!(u8 => u64, u16 => u64, u32 => u64, i8 => i64, i16 => i64, i32 => i
 impl Scalar for usize {
     fn write(&self, buf: &mut Vec<u8>) {
         (*self as u64).write(buf);
+    }
+}
+
+impl Scalar for bool {
+    fn write(&self, buf: &mut Vec<u8>) {
+        buf.extend_from_slice(if *self { b"true" } else { b"false" });
     }
 }
 

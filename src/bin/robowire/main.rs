@@ -10,6 +10,7 @@ mod driver;
 mod input;
 mod json;
 mod omnitiles;
+mod pixy2;
 mod telemetrix;
 
 use clap::{Parser, Subcommand};
@@ -24,6 +25,12 @@ Decode and encode robot serial protocol captures as JSON lines.
   robowire decode omnitiles [--from tile|host|any] [--layout L[,L...]] [--chunk N]
                             [--hex] [--datagrams] [--errors] [INPUT]
   robowire encode omnitiles [--hex] [INPUT]
+  robowire decode pixy2 [--from host|device|any] [--checksum-only] [--chunk N]
+                        [--hex] [--errors] [INPUT]
+  robowire encode pixy2 [--hex] [INPUT]
+  robowire decode telemetrix [--from host|pico|any] [--dialect mirte13|mirte12|upstream11]
+                             [--lenient] [--chunk N] [--hex] [--errors] [INPUT]
+  robowire encode telemetrix [--dialect D] [--hex] [INPUT]
 
 decode prints one JSON object per decoded frame; encode reads the same objects and
 writes the frames' bytes, so `robowire decode omnitiles x.bin | robowire encode
@@ -31,8 +38,8 @@ omnitiles` reproduces every decoded frame byte for byte. INPUT is a file, or `-`
 or absent for stdin. Streams of any size run in constant memory.
 
 Exit status: 0 on success, 2 on usage errors and invalid input, 1 on I/O errors.
-A closed stdout pipe ends the run quietly. `robowire decode omnitiles --help`
-documents the JSON schema.";
+A closed stdout pipe ends the run quietly. `robowire decode <protocol> --help`
+documents each protocol's JSON schema.";
 
 #[derive(Debug, Parser)]
 #[command(name = "robowire", version, about = ABOUT, long_about = LONG_ABOUT)]
@@ -59,6 +66,8 @@ enum Verb {
 enum DecodeProtocol {
     /// OmniTiles: host commands and tile telemetry (0xA5, id, payload, sum).
     Omnitiles(omnitiles::DecodeArgs),
+    /// Pixy2: host requests and device responses (ae c1 / af c1 frames).
+    Pixy2(pixy2::DecodeArgs),
     /// Telemetrix4RpiPico: host commands and Pico reports (LEN, id, payload).
     Telemetrix(telemetrix::DecodeArgs),
 }
@@ -67,6 +76,8 @@ enum DecodeProtocol {
 enum EncodeProtocol {
     /// OmniTiles: commands and telemetry from JSON lines.
     Omnitiles(omnitiles::EncodeArgs),
+    /// Pixy2: requests and responses from JSON lines.
+    Pixy2(pixy2::EncodeArgs),
     /// Telemetrix4RpiPico: commands and reports from JSON lines.
     Telemetrix(telemetrix::EncodeArgs),
 }
@@ -145,6 +156,12 @@ fn run(verb: &Verb, out: &mut driver::Output) -> Result<Done, Failure> {
         Verb::Encode {
             protocol: EncodeProtocol::Telemetrix(args),
         } => telemetrix::encode(args, out).map(|()| Done::Encoded),
+        Verb::Decode {
+            protocol: DecodeProtocol::Pixy2(args),
+        } => pixy2::decode(args, out).map(Done::Decoded),
+        Verb::Encode {
+            protocol: EncodeProtocol::Pixy2(args),
+        } => pixy2::encode(args, out).map(|()| Done::Encoded),
     }
 }
 

@@ -1,0 +1,44 @@
+//! A simulated Pixy2 answering a host over an in-memory SPI link.
+//!
+//! The device thread decodes requests with robowire's device decoder and
+//! answers in the checksum form (version, resolution, blocks of a moving
+//! ball, line features, errors for requests it refuses); the host pairs each
+//! answer with its request (`Query::answer`), retries what a host retries
+//! (busy, program switches, line noise) and prints what it learns. The run is
+//! bounded and seeded: the same conversation every time.
+//!
+//! ```sh
+//! cargo run --example pixy2_sim                   # the host's view
+//! cargo run --example pixy2_sim -- CAPTURE.hex    # also write the conversation
+//! ```
+//!
+//! The conversation, one SPI transaction per line, is committed as
+//! `tests/data/pixy2_conversation.hex`; `tests/pixy2_sim.rs` checks that it
+//! regenerates byte for byte. Decode it with
+//! `robowire decode pixy2 --hex tests/data/pixy2_conversation.hex`.
+
+mod sim;
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let outcome = sim::run(&mut |line| println!("{line}"))?;
+    let device = outcome.device;
+    println!(
+        "device: {} requests answered, {} dropped; host: {} checksum failures, \
+         {} busy, {} program-changing and {} no-response retries",
+        device.answered,
+        device.dropped,
+        outcome.learned.checksum_errors,
+        outcome.learned.busy,
+        outcome.learned.prog_changing,
+        outcome.learned.no_response
+    );
+    if let Some(path) = std::env::args_os().nth(1) {
+        std::fs::write(&path, &outcome.capture)?;
+        println!(
+            "{} ({} SPI transactions)",
+            std::path::Path::new(&path).display(),
+            outcome.capture.lines().count()
+        );
+    }
+    Ok(())
+}
