@@ -245,15 +245,18 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
     /// all of `input` has been taken (a trailing partial frame is kept inside).
     ///
     /// Call it in a loop, `while let Some(event) = decoder.decode(&mut input)`.
+    #[inline(always)]
     pub fn decode<'a, 'i: 'a>(
         &'a mut self,
         input: &mut &'i [u8],
     ) -> Option<Event<'a, F::Message<'a>, F::Error>> {
         self.apply_pending_drop();
-        if self.len > 0 {
-            return self.decode_buffered(input);
-        }
-        self.decode_in_place(input)
+        let step = if self.len > 0 {
+            self.step_buffered(input)
+        } else {
+            self.step_in_place(input)
+        };
+        self.emit(step)
     }
 
     /// Feed one byte (for interrupt handlers). The byte is always taken. It
@@ -274,7 +277,8 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         // `len < N` holds between calls: a full buffer is always resolved.
         self.buf[self.len] = byte;
         self.len += 1;
-        self.decode_buffered(&mut &[][..])
+        let step = self.step_buffered(&mut &[][..]);
+        self.emit(step)
     }
 
     /// Collect the events that need no further input (after [`push`](Self::push)
@@ -311,24 +315,36 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             Check::Need(_) => Check::Reject(self.framing.truncated(self.len)),
             other => other,
         };
-        match check {
-            Check::Frame(n) if n <= self.len && n > 0 => Some(self.emit_buffered(n)),
+        let step = match check {
+            Check::Frame(n) if n <= self.len && n > 0 => Step::Buffered(n),
             Check::Frame(_) | Check::Need(_) => {
-                Some(self.reject_buffered(self.framing.truncated(self.len)))
+                self.reject_buffered(self.framing.truncated(self.len))
             }
-            Check::Reject(e) => Some(self.reject_buffered(e)),
-        }
+            Check::Reject(e) => self.reject_buffered(e),
+        };
+        self.emit(step)
     }
 
+    #[inline(always)]
     fn apply_pending_drop(&mut self) {
         let n = self.pending_drop;
         if n > 0 {
-            self.pending_drop = 0;
-            self.buf.copy_within(n..self.len, 0);
-            self.len -= n;
-            self.buf_offset += n as u64;
-            self.realign_buffer();
+            self.drop_front(n);
         }
+    }
+
+    /// Remove the emitted frame at the front of the buffer.
+    fn drop_front(&mut self, n: usize) {
+        self.pending_drop = 0;
+        self.buf_offset += n as u64;
+        if n >= self.len {
+            // The usual case: the frame was all that was buffered.
+            self.len = 0;
+            return;
+        }
+        self.buf.copy_within(n..self.len, 0);
+        self.len -= n;
+        self.realign_buffer();
     }
 
     /// Make `buf[0]` a candidate start again after its front was removed.
@@ -342,17 +358,41 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         }
     }
 
-    fn decode_in_place<'a, 'i: 'a>(
+    /// Turn a step into the event it stands for. This is the one place a
+    /// frame is parsed: the in-place and buffered paths meet here on a small
+    /// value (an offset and a slice), so the message is built once, straight
+    /// into the returned event, instead of being built on each path and
+    /// copied where they join.
+    #[inline(always)]
+    fn emit<'a>(
         &'a mut self,
-        input: &mut &'i [u8],
+        step: Step<'a, F::Error>,
     ) -> Option<Event<'a, F::Message<'a>, F::Error>> {
+        let (offset, raw) = match step {
+            Step::Done => return None,
+            Step::Rejected(rejected) => return Some(Err(rejected)),
+            Step::InPlace { offset, raw } => (offset, raw),
+            Step::Buffered(n) => {
+                // The frame is dropped from the buffer on the next call.
+                self.pending_drop = n;
+                self.need = 0;
+                (self.buf_offset, &self.buf[..n])
+            }
+        };
+        Some(parse_counted(&self.framing, &mut self.stats, offset, raw))
+    }
+
+    /// No candidate is buffered: find the next one in `input` and resolve it
+    /// in place if it lies wholly inside.
+    #[inline(always)]
+    fn step_in_place<'i>(&mut self, input: &mut &'i [u8]) -> Step<'i, F::Error> {
         let data: &'i [u8] = input;
         let pos = self.framing.find_start(data);
         self.stats.skipped += pos as u64;
         if pos >= data.len() {
             self.stats.bytes += data.len() as u64;
             *input = &[];
-            return None;
+            return Step::Done;
         }
         let offset = self.stats.bytes + pos as u64;
         let candidate = &data[pos..];
@@ -360,7 +400,10 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             Check::Frame(n) if n > 0 && n <= candidate.len() => {
                 self.stats.bytes += (pos + n) as u64;
                 *input = &data[pos + n..];
-                return Some(self.parse(offset, &candidate[..n]));
+                return Step::InPlace {
+                    offset,
+                    raw: &candidate[..n],
+                };
             }
             Check::Frame(n) | Check::Need(n) if candidate.len() < N => {
                 // Only a frame that straddles the end of the chunk is copied.
@@ -370,7 +413,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
                 self.buf_offset = offset;
                 self.stats.bytes += data.len() as u64;
                 *input = &[];
-                return None;
+                return Step::Done;
             }
             // The framing asks for more than the buffer holds: a framing bug,
             // but never a reason to stall.
@@ -381,16 +424,13 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         self.stats.skipped += 1;
         self.stats.bytes += (pos + 1) as u64;
         *input = &data[pos + 1..];
-        Some(Err(Rejected { offset, error }))
+        Step::Rejected(Rejected { offset, error })
     }
 
     /// A candidate is buffered: add input bytes to it until it resolves.
-    fn decode_buffered<'a, 'i: 'a>(
-        &'a mut self,
-        input: &mut &'i [u8],
-    ) -> Option<Event<'a, F::Message<'a>, F::Error>> {
+    fn step_buffered<'i>(&mut self, input: &mut &'i [u8]) -> Step<'i, F::Error> {
         if self.len == 0 {
-            return self.decode_in_place(input);
+            return self.step_in_place(input);
         }
         let data: &'i [u8] = input;
         let stored = self.len;
@@ -404,7 +444,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             self.len = total;
             self.stats.bytes += take as u64;
             *input = &data[take..];
-            return None;
+            return Step::Done;
         }
         match self.framing.check(&self.buf[..total], false) {
             Check::Frame(n) if n > 0 && n <= total => {
@@ -414,36 +454,26 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
                 // Stored bytes past the frame stay buffered (possible only
                 // after a rejection shifted the buffer).
                 self.len = n.max(stored);
-                Some(self.emit_buffered(n))
+                Step::Buffered(n)
             }
             Check::Frame(n) | Check::Need(n) if total < N => {
                 self.stats.bytes += take as u64;
                 *input = &data[take..];
                 self.len = total;
                 self.need = n.min(N);
-                None
+                Step::Done
             }
             Check::Frame(_) | Check::Need(_) => {
                 let error = self.framing.truncated(total);
-                Some(self.reject_buffered(error))
+                self.reject_buffered(error)
             }
-            Check::Reject(error) => Some(self.reject_buffered(error)),
+            Check::Reject(error) => self.reject_buffered(error),
         }
-    }
-
-    /// Emit `buf[..n]` as a frame; it is dropped from the buffer on the next call.
-    fn emit_buffered(&mut self, n: usize) -> Event<'_, F::Message<'_>, F::Error> {
-        self.pending_drop = n;
-        self.need = 0;
-        let offset = self.buf_offset;
-        let (framing, stats) = (&self.framing, &mut self.stats);
-        let raw = &self.buf[..n];
-        parse_counted(framing, stats, offset, raw)
     }
 
     /// Reject the buffered candidate: drop its first byte only and realign on
     /// the next candidate start among the stored bytes.
-    fn reject_buffered<'a>(&mut self, error: F::Error) -> Event<'a, F::Message<'a>, F::Error> {
+    fn reject_buffered<'i>(&mut self, error: F::Error) -> Step<'i, F::Error> {
         let offset = self.buf_offset;
         self.need = 0;
         self.count_rejection(&error);
@@ -452,7 +482,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         self.len -= 1;
         self.buf_offset += 1;
         self.realign_buffer();
-        Err(Rejected { offset, error })
+        Step::Rejected(Rejected { offset, error })
     }
 
     fn count_rejection(&mut self, error: &F::Error) {
@@ -462,12 +492,21 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             self.stats.rejected += 1;
         }
     }
-
-    fn parse<'a>(&mut self, offset: u64, raw: &'a [u8]) -> Event<'a, F::Message<'a>, F::Error> {
-        parse_counted(&self.framing, &mut self.stats, offset, raw)
-    }
 }
 
+/// What one step of decoding found, before any frame is parsed.
+enum Step<'a, E> {
+    /// Every byte offered was taken; nothing to report yet.
+    Done,
+    /// A candidate was rejected.
+    Rejected(Rejected<E>),
+    /// A frame wholly inside the caller's input.
+    InPlace { offset: u64, raw: &'a [u8] },
+    /// A frame of this many bytes at the front of the internal buffer.
+    Buffered(usize),
+}
+
+#[inline(always)]
 fn parse_counted<'a, F: Framing>(
     framing: &F,
     stats: &mut Stats,

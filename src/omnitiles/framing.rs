@@ -98,6 +98,9 @@ impl Framing {
             Some(l) => l,
             None => return Check::Reject(Error::UnknownId { id: id::TELEMETRY }),
         };
+        if self.layouts.len() == 1 {
+            return check_single(longest, c, at_end);
+        }
         let mut error = Error::Unconfirmed;
         // Running sum over bytes 1.. so each length costs only its new bytes.
         let mut sum: u8 = 0;
@@ -114,9 +117,7 @@ impl Framing {
                     Check::Need(len)
                 };
             }
-            sum = c[summed..len - 1]
-                .iter()
-                .fold(sum, |s, &b| s.wrapping_add(b));
+            sum = sum.wrapping_add(sum8(&c[summed..len - 1]));
             summed = len - 1;
             let found = c[len - 1];
             if sum != found {
@@ -139,6 +140,75 @@ impl Framing {
     }
 }
 
+/// A single telemetry layout: the candidate is a frame of exactly its length
+/// or nothing, and nothing needs confirming.
+#[inline(always)]
+fn check_single(layout: Layout, c: &[u8], at_end: bool) -> Check<Error> {
+    // One fixed-size check per layout, so the sum runs over a constant range.
+    match layout {
+        Layout::Pos7 => check_fixed::<7>(c, at_end),
+        Layout::Uwb15 => check_fixed::<15>(c, at_end),
+        Layout::UwbTof17 => check_fixed::<17>(c, at_end),
+        Layout::Spi45 => check_fixed::<45>(c, at_end),
+        Layout::Ble53 => check_fixed::<53>(c, at_end),
+    }
+}
+
+#[inline(always)]
+fn check_fixed<const L: usize>(c: &[u8], at_end: bool) -> Check<Error> {
+    let Some(frame) = c.first_chunk::<L>() else {
+        return if at_end {
+            Check::Reject(Error::Truncated { len: c.len() })
+        } else {
+            Check::Need(L)
+        };
+    };
+    let expected = frame[1..L - 1].iter().fold(0u8, |s, &b| s.wrapping_add(b));
+    let found = frame[L - 1];
+    if expected == found {
+        Check::Frame(L)
+    } else {
+        Check::Reject(Error::Checksum { expected, found })
+    }
+}
+
+/// The wrapping 8-bit sum of `bytes`, eight bytes at a time: each `u64` word
+/// is split into its even and odd bytes as four 16-bit lanes, the lanes are
+/// accumulated (up to 128 words cannot overflow a lane), and the lanes are
+/// folded at the end. Equal to `bytes.iter().fold(0, u8::wrapping_add)`.
+#[inline(always)]
+pub(crate) fn sum8(bytes: &[u8]) -> u8 {
+    const LANES: u64 = 0x00ff_00ff_00ff_00ff;
+    let mut total: u8 = 0;
+    let mut words = bytes.chunks_exact(8);
+    let mut acc: u64 = 0;
+    let mut in_acc = 0;
+    for word in words.by_ref() {
+        let mut w = [0u8; 8];
+        w.copy_from_slice(word);
+        let w = u64::from_le_bytes(w);
+        acc += (w & LANES) + ((w >> 8) & LANES);
+        in_acc += 1;
+        if in_acc == 128 {
+            total = total.wrapping_add(fold_lanes(acc));
+            acc = 0;
+            in_acc = 0;
+        }
+    }
+    total = total.wrapping_add(fold_lanes(acc));
+    words
+        .remainder()
+        .iter()
+        .fold(total, |s, &b| s.wrapping_add(b))
+}
+
+/// The sum of four 16-bit lanes, modulo 256.
+#[inline(always)]
+fn fold_lanes(acc: u64) -> u8 {
+    let acc = (acc & 0x0000_ffff_0000_ffff) + ((acc >> 16) & 0x0000_ffff_0000_ffff);
+    (acc + (acc >> 32)) as u8
+}
+
 impl Default for Framing {
     fn default() -> Self {
         Framing::ANY
@@ -150,10 +220,16 @@ impl stream::Framing for Framing {
     type Message<'a> = Packet;
     type Owned = Packet;
 
+    #[inline]
     fn find_start(&self, bytes: &[u8]) -> usize {
-        memchr::memchr(START, bytes).unwrap_or(bytes.len())
+        // On a clean stream the next frame starts right here: skip the scan.
+        match bytes.first() {
+            Some(&START) => 0,
+            _ => memchr::memchr(START, bytes).unwrap_or(bytes.len()),
+        }
     }
 
+    #[inline]
     fn check(&self, c: &[u8], at_end: bool) -> Check<Error> {
         let Some(&id) = c.get(1) else {
             return if at_end {
@@ -194,6 +270,7 @@ impl stream::Framing for Framing {
         matches!(error, Error::Checksum { .. })
     }
 
+    #[inline(always)]
     fn parse(&self, frame: &[u8]) -> Result<Packet, Error> {
         parse_frame(frame)
     }
@@ -205,6 +282,7 @@ impl stream::Framing for Framing {
 
 /// Turn a frame that passed framing (start byte, accepted id, length and
 /// checksum already checked) into a packet.
+#[inline(always)]
 pub(crate) fn parse_frame(frame: &[u8]) -> Result<Packet, Error> {
     let id = frame.get(1).copied().unwrap_or(0);
     if id == id::TELEMETRY {
