@@ -373,10 +373,19 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             Step::Rejected(rejected) => return Some(Err(rejected)),
             Step::InPlace { offset, raw } => (offset, raw),
             Step::Buffered(n) => {
-                // The frame is dropped from the buffer on the next call.
-                self.pending_drop = n;
+                let offset = self.buf_offset;
                 self.need = 0;
-                (self.buf_offset, &self.buf[..n])
+                if n >= self.len {
+                    // The frame is all the buffer holds: the buffer is empty
+                    // from now on (the event still borrows the bytes, which
+                    // nothing overwrites before the next call).
+                    self.len = 0;
+                    self.buf_offset += n as u64;
+                } else {
+                    // Later bytes stay: the frame is dropped on the next call.
+                    self.pending_drop = n;
+                }
+                (offset, &self.buf[..n])
             }
         };
         Some(parse_counted(&self.framing, &mut self.stats, offset, raw))
