@@ -7,9 +7,14 @@ mod corruption;
 use corruption::{command_stream, decode, score, telemetry_stream, Corruption};
 use robowire::omnitiles::{Framing, Layout, Layouts};
 
-/// Enough frames for a few dozen corrupted ones at 1 %, small enough for Miri.
-const FRAMES: usize = if cfg!(miri) { 300 } else { 3000 };
-const CHUNKS: [usize; 4] = [1, 7, 244, 0];
+/// Enough frames for a few dozen corrupted ones at 1 % (a few under Miri,
+/// an interpreter, where the byte-at-a-time chunking is left out too).
+const FRAMES: usize = if cfg!(miri) { 200 } else { 3000 };
+const CHUNKS: &[usize] = if cfg!(miri) {
+    &[7, 244, 0]
+} else {
+    &[1, 7, 244, 0]
+};
 
 fn ble53_only() -> Framing {
     Framing::telemetry(Layouts::only(Layout::Ble53))
@@ -22,7 +27,7 @@ fn single_layout_bit_flips_lose_no_uncorrupted_frame() {
         stream.sent.iter().any(|s| !s.intact),
         "some frames corrupted"
     );
-    for chunk in CHUNKS {
+    for &chunk in CHUNKS {
         let s = score(&stream, &decode(ble53_only(), &stream.bytes, chunk));
         assert_eq!((s.lost, s.false_frames), (0, 0), "chunk {chunk}: {s:?}");
         assert_eq!(s.intact, s.ideal);
@@ -34,7 +39,7 @@ fn single_layout_bit_flips_lose_no_uncorrupted_frame() {
 fn single_layout_garbage_runs_lose_no_uncorrupted_frame() {
     let stream = telemetry_stream(0x6A2BA6E, FRAMES, &[Layout::Ble53], Corruption::Garbage);
     assert!(stream.bytes.len() > FRAMES * 53, "garbage was inserted");
-    for chunk in CHUNKS {
+    for &chunk in CHUNKS {
         let s = score(&stream, &decode(ble53_only(), &stream.bytes, chunk));
         assert_eq!((s.lost, s.false_frames), (0, 0), "chunk {chunk}: {s:?}");
         assert_eq!(s.intact, FRAMES);
@@ -52,7 +57,7 @@ fn single_layout_truncated_frames_lose_a_frame_only_to_a_false_one() {
     let whole = score(&stream, &decode(ble53_only(), &stream.bytes, 0));
     assert!(whole.lost <= whole.false_frames, "{whole:?}");
     assert!(whole.false_frames * 64 <= cut, "{whole:?}");
-    for chunk in CHUNKS {
+    for &chunk in CHUNKS {
         let s = score(&stream, &decode(ble53_only(), &stream.bytes, chunk));
         assert_eq!(s, whole, "chunk {chunk}");
     }
@@ -62,7 +67,7 @@ fn single_layout_truncated_frames_lose_a_frame_only_to_a_false_one() {
 fn garbage_ending_in_start_byte_before_commands_loses_nothing() {
     let stream = command_stream(0xA5A5, FRAMES, Corruption::GarbageEndingInStart);
     assert!(stream.bytes.len() > stream.sent.iter().map(|s| s.len).sum::<usize>());
-    for chunk in CHUNKS {
+    for &chunk in CHUNKS {
         let s = score(&stream, &decode(Framing::commands(), &stream.bytes, chunk));
         assert_eq!(s.lost, 0, "chunk {chunk}: {s:?}");
         assert_eq!(s.intact, FRAMES);
@@ -80,7 +85,7 @@ fn clean_streams_decode_exactly() {
         (&commands, Framing::commands()),
         (&mixed, Framing::ANY),
     ] {
-        for chunk in CHUNKS {
+        for &chunk in CHUNKS {
             let s = score(stream, &decode(framing, &stream.bytes, chunk));
             assert_eq!(
                 (s.intact, s.lost, s.false_frames),
