@@ -95,3 +95,34 @@ fn clean_streams_decode_exactly() {
         }
     }
 }
+
+/// Found while writing the structured fuzz oracle: with several layouts, a
+/// 53-byte frame whose bytes 1..=5 sum to byte 6 and whose bytes 7 and 8 are
+/// `a5 60` is a valid 7-byte frame confirmed by a header, and the length
+/// policy (shortest confirmed first) takes it so. The wire format cannot tell;
+/// a single named layout decodes it.
+#[test]
+fn a_frame_that_mimics_a_short_frame_and_a_header() {
+    use robowire::omnitiles::{Packet, Telemetry};
+    use robowire::FrameBuf;
+    let mut t = Telemetry::empty(Layout::Ble53);
+    t.m1_pos = Some(0);
+    t.m2_pos = Some(0);
+    t.uwb = Some([Some(0xA560), Some(0x0060), Some(1), Some(2)]);
+    let frame = FrameBuf::<53>::encode(&t).unwrap();
+    assert_eq!(&frame[..9], [0xa5, 0x60, 0, 0, 0, 0, 0x60, 0xa5, 0x60]);
+    let input = [&frame[..], &frame[..]].concat();
+
+    let lengths = |framing| -> Vec<(u64, usize)> {
+        decode(framing, &input, 0)
+            .iter()
+            .map(|f| (f.offset, f.len))
+            .collect()
+    };
+    assert_eq!(lengths(Framing::ANY), [(0, 7), (53, 7)]);
+    assert_eq!(lengths(ble53_only()), [(0, 53), (53, 53)]);
+    assert_eq!(
+        decode(ble53_only(), &input, 0)[0].message,
+        Packet::Telemetry(t)
+    );
+}

@@ -25,8 +25,14 @@ use crate::stream::{self, Check};
 /// A shorter frame therefore waits for two more bytes (the next header). With
 /// a single layout there is nothing to confirm: every frame is emitted as
 /// soon as it is complete. On a clean stream of any mix of the enabled layouts
-/// this gives no false and no lost frames; in noise, a short frame followed
-/// by garbage is dropped ([`Error::Unconfirmed`]) rather than guessed at.
+/// this gives no false and no lost frames, except where a frame's own bytes
+/// look like a shorter frame and a header: a 53-byte frame whose bytes 1..=5
+/// sum to byte 6 and whose bytes 7 and 8 are `a5 60` (for instance m1 = m2 =
+/// 0 and UWB d0 = `0xA560`, d1 = `0x0060`) is taken as a 7-byte frame, and
+/// likewise at 15 and 17 bytes; for random contents that is about one frame
+/// in 2^24. In noise, a short frame followed by garbage is dropped
+/// ([`Error::Unconfirmed`]) rather than guessed at. Name a single layout when
+/// you know it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Framing {
     commands: bool,
