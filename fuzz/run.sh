@@ -20,6 +20,12 @@ targets=()
 for file in fuzz_targets/*.rs; do
     targets+=("$(basename "$file" .rs)")
 done
+for target in "${targets[@]}"; do
+    if ! grep -q "^name = \"$target\"" Cargo.toml; then
+        echo "fuzz/fuzz_targets/$target.rs has no [[bin]] entry in fuzz/Cargo.toml" >&2
+        exit 1
+    fi
+done
 count=${#targets[@]}
 if (( count == 0 )); then
     echo "no fuzz targets" >&2

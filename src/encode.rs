@@ -5,6 +5,9 @@ use core::fmt;
 use core::ops::Deref;
 
 /// Why a message could not be encoded. Nothing is written when encoding fails.
+// Serialize only: the `&'static str` fields cannot be deserialized.
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum EncodeError {
@@ -68,6 +71,20 @@ pub trait Encode {
     }
 }
 
+/// A reference encodes as the message it points to, so sinks that take
+/// messages by value (a codec's `Encoder`) also take `&message`.
+impl<T: Encode + ?Sized> Encode for &T {
+    const MAX_LEN: usize = T::MAX_LEN;
+
+    fn encoded_len(&self) -> usize {
+        (**self).encoded_len()
+    }
+
+    fn encode(&self, out: &mut [u8]) -> Result<usize, EncodeError> {
+        (**self).encode(out)
+    }
+}
+
 /// Size of the scratch frame [`Encode::encode_buf`] uses: the longest frame of
 /// any protocol here (a Pixy2 frame: 6-byte header and 255-byte payload).
 #[cfg(feature = "bytes")]
@@ -86,6 +103,10 @@ pub(crate) fn check_room(out: &[u8], needed: usize) -> Result<(), EncodeError> {
 }
 
 /// An owned frame of at most `N` bytes, dereferencing to its bytes.
+///
+/// With the `serde` feature it is written as its bytes (a byte string; an
+/// array of numbers in JSON); deserializing refuses more than `N` bytes. With
+/// `defmt` it prints its bytes in hex.
 #[derive(Clone, Copy)]
 pub struct FrameBuf<const N: usize> {
     bytes: [u8; N],
@@ -155,5 +176,28 @@ impl<const N: usize> fmt::Debug for FrameBuf<N> {
             write!(f, "{b:02x}")?;
         }
         write!(f, ")")
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<const N: usize> serde::Serialize for FrameBuf<N> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        crate::serde_support::serialize_bytes(&**self, serializer)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de, const N: usize> serde::Deserialize<'de> for FrameBuf<N> {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let mut frame = Self::new();
+        frame.len = crate::serde_support::bytes_into(deserializer, &mut frame.bytes, "a frame")?;
+        Ok(frame)
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl<const N: usize> defmt::Format for FrameBuf<N> {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(f, "FrameBuf({=[u8]:02x})", &**self)
     }
 }

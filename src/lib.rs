@@ -4,9 +4,17 @@
 #![forbid(unsafe_code)]
 #![doc = include_str!("../README.md")]
 
+#[cfg(feature = "tokio-util-07")]
+extern crate std;
+
 pub mod encode;
+pub mod io;
 pub mod omnitiles;
+pub mod pixy2;
+#[cfg(feature = "serde")]
+mod serde_support;
 pub mod stream;
+pub mod telemetrix;
 
 pub use encode::{Encode, EncodeError, FrameBuf};
 pub use stream::{

@@ -24,6 +24,8 @@
 use core::fmt;
 
 /// What a [`Framing`] says about the bytes that begin at a candidate start.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Check<E> {
     /// The bytes are a prefix of something that could still become a frame; the
@@ -52,6 +54,19 @@ pub trait Framing {
     /// keeping a message after its bytes are gone.
     type Owned;
 
+    /// Bytes from a candidate start that are enough for [`check`](Framing::check)
+    /// to reject an impossible header (start, id or type, length). The engine
+    /// reads this many bytes after a frame to tell whether another frame
+    /// plausibly follows it (see [`StreamDecoder`]'s resync verification).
+    const HEADER_LEN: usize;
+
+    /// Whether the engine verifies candidates found after a resync against
+    /// overlapping frames (see [`StreamDecoder`]). Worth it with a checksum,
+    /// which makes a valid frame inside another rare; without one, plausible
+    /// frames inside frames are so common that the test costs about as many
+    /// real frames as it saves.
+    const VERIFY_AFTER_RESYNC: bool = true;
+
     /// The index of the first byte in `bytes` at which a frame could start, or
     /// `bytes.len()` if none can. A start that cannot be confirmed from `bytes`
     /// alone (a multi-byte sync word cut by the end of `bytes`) must be returned.
@@ -64,6 +79,11 @@ pub trait Framing {
 
     /// The error reported when the input ends inside a candidate of `len` bytes.
     fn truncated(&self, len: usize) -> Self::Error;
+
+    /// The error reported for a candidate of `len` bytes that validated but
+    /// was set aside because a frame overlapping it is confirmed by what
+    /// follows it and the candidate is not (see [`StreamDecoder`]).
+    fn superseded(&self, len: usize) -> Self::Error;
 
     /// Whether `error` is an integrity failure (counted in
     /// [`Stats::checksum_errors`]).
@@ -78,12 +98,23 @@ pub trait Framing {
 }
 
 /// A decoded frame: where it was in the stream, its bytes and its message.
+///
+/// With the `serde` feature, `raw` is written as a byte string (an array of
+/// numbers in JSON) and deserializing borrows it from the input, which only
+/// formats that hand out borrowed bytes can do (postcard, bincode; not
+/// JSON). To keep a frame in any format, serialize [`Framed`] instead.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Frame<'a, M> {
     /// Offset of the frame's first byte, counted from the first byte the decoder
     /// was ever given.
     pub offset: u64,
     /// The frame's bytes on the wire.
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_support::serialize_bytes")
+    )]
     pub raw: &'a [u8],
     /// The typed message.
     pub message: M,
@@ -103,6 +134,8 @@ impl<M> Frame<'_, M> {
 
 /// An owned decoded message with its place in the stream, as the
 /// [`Feed`] and [`Flush`] iterators yield it.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Framed<M> {
     /// Offset of the frame's first byte, as in [`Frame::offset`].
@@ -114,6 +147,8 @@ pub struct Framed<M> {
 }
 
 /// A rejected candidate or an unparseable frame, with its stream offset.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Rejected<E> {
     /// Offset of the candidate's first byte, as in [`Frame::offset`].
@@ -136,6 +171,8 @@ pub type Event<'a, M, E> = Result<Frame<'a, M>, Rejected<E>>;
 
 /// Link-quality counters. They always add up:
 /// `bytes == frame_bytes + skipped + buffered` (see [`StreamDecoder::buffered`]).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct Stats {
@@ -155,9 +192,26 @@ pub struct Stats {
     pub rejected: u64,
     /// Frames whose integrity was fine but whose contents did not parse.
     pub malformed: u64,
+    /// Candidates that validated after a resync but were set aside for an
+    /// overlapping frame that what follows confirmed.
+    pub superseded: u64,
 }
 
 impl Stats {
+    /// All counters zero.
+    pub const fn new() -> Stats {
+        Stats {
+            bytes: 0,
+            frames: 0,
+            frame_bytes: 0,
+            skipped: 0,
+            checksum_errors: 0,
+            rejected: 0,
+            malformed: 0,
+            superseded: 0,
+        }
+    }
+
     /// Add another decoder's counters to these.
     pub fn add(&mut self, other: &Stats) {
         self.bytes += other.bytes;
@@ -167,12 +221,30 @@ impl Stats {
         self.checksum_errors += other.checksum_errors;
         self.rejected += other.rejected;
         self.malformed += other.malformed;
+        self.superseded += other.superseded;
     }
 }
 
 /// The protocol-neutral incremental decoder. `N` is the capacity of the internal
 /// buffer that holds a frame straddling two chunks; it must be at least the
-/// longest candidate the framing can ask for.
+/// longest candidate the framing can ask for, and about twice that for the
+/// resync verification below to have room.
+///
+/// # Resync verification
+///
+/// A weak check (an 8-bit sum, or none) lets garbage validate by chance, and a
+/// false frame that reaches into a real one would swallow it. So a candidate
+/// found after skipped bytes or a rejection is accepted at once only if no start
+/// inside it begins another valid frame. If one does, the candidate is kept
+/// only when it is *confirmed*: followed by a plausible header
+/// ([`Framing::HEADER_LEN`] bytes that `check` does not reject) or by the end
+/// of input, and the inner frame does not end exactly where it ends (then
+/// nothing after them can tell them apart, and the later start wins: garbage
+/// before a frame is likelier than a frame at a payload's tail). Otherwise it
+/// is set aside ([`Framing::superseded`]) and the
+/// decoder resyncs by one, so the frame inside it is found. A candidate at the
+/// very start of the stream or directly after a frame is trusted, so a clean
+/// stream is never delayed or slowed by this.
 #[derive(Debug, Clone)]
 pub struct StreamDecoder<F, const N: usize> {
     framing: F,
@@ -186,6 +258,11 @@ pub struct StreamDecoder<F, const N: usize> {
     buf_offset: u64,
     /// The buffered candidate cannot resolve before it has this many bytes.
     need: usize,
+    /// Whether the next candidate starts right where the last frame ended (or
+    /// at the very start of the stream). Any other candidate (one after
+    /// skipped bytes or a rejection) is verified against overlapping frames
+    /// before it is accepted.
+    synced: bool,
     stats: Stats,
 }
 
@@ -199,15 +276,8 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             pending_drop: 0,
             buf_offset: 0,
             need: 0,
-            stats: Stats {
-                bytes: 0,
-                frames: 0,
-                frame_bytes: 0,
-                skipped: 0,
-                checksum_errors: 0,
-                rejected: 0,
-                malformed: 0,
-            },
+            synced: true,
+            stats: Stats::new(),
         }
     }
 
@@ -236,6 +306,9 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
     pub fn clear(&mut self) {
         self.apply_pending_drop();
         self.stats.skipped += self.len as u64;
+        if self.len > 0 {
+            self.synced = false;
+        }
         self.len = 0;
         self.need = 0;
     }
@@ -245,6 +318,8 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
     /// all of `input` has been taken (a trailing partial frame is kept inside).
     ///
     /// Call it in a loop, `while let Some(event) = decoder.decode(&mut input)`.
+    // Inlined into the caller's loop: the event is then built where the caller
+    // reads it, not returned through memory (see `emit`).
     #[inline(always)]
     pub fn decode<'a, 'i: 'a>(
         &'a mut self,
@@ -269,6 +344,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         if self.len == 0 {
             if self.framing.find_start(&[byte]) > 0 {
                 self.stats.skipped += 1;
+                self.synced = false;
                 return None;
             }
             self.buf_offset = self.stats.bytes - 1;
@@ -311,17 +387,13 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         if self.len == 0 {
             return None;
         }
-        let check = match self.framing.check(&self.buf[..self.len], true) {
-            Check::Need(_) => Check::Reject(self.framing.truncated(self.len)),
-            other => other,
+        let error = match self.resolve(&self.buf[..self.len], true) {
+            Verdict::Frame(n) => return self.emit(Step::Buffered(n)),
+            Verdict::Need(_) => self.reject_kind(self.framing.truncated(self.len)),
+            Verdict::Reject(error) => self.reject_kind(error),
+            Verdict::Superseded(n) => self.supersede_kind(n),
         };
-        let step = match check {
-            Check::Frame(n) if n <= self.len && n > 0 => Step::Buffered(n),
-            Check::Frame(_) | Check::Need(_) => {
-                self.reject_buffered(self.framing.truncated(self.len))
-            }
-            Check::Reject(e) => self.reject_buffered(e),
-        };
+        let step = self.reject_buffered(error);
         self.emit(step)
     }
 
@@ -338,7 +410,6 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         self.pending_drop = 0;
         self.buf_offset += n as u64;
         if n >= self.len {
-            // The usual case: the frame was all that was buffered.
             self.len = 0;
             return;
         }
@@ -351,6 +422,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
     fn realign_buffer(&mut self) {
         let skip = self.framing.find_start(&self.buf[..self.len]);
         if skip > 0 {
+            self.synced = false;
             self.buf.copy_within(skip..self.len, 0);
             self.len -= skip;
             self.buf_offset += skip as u64;
@@ -358,11 +430,91 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         }
     }
 
+    /// The framing's answer for a candidate, with the resync verification.
+    #[inline(always)]
+    fn resolve(&self, c: &[u8], at_end: bool) -> Verdict<F::Error> {
+        let n = match self.framing.check(c, at_end) {
+            Check::Frame(n) if n > 0 && n <= c.len() => n,
+            Check::Frame(n) | Check::Need(n) => return Verdict::Need(n.max(c.len() + 1)),
+            Check::Reject(e) => return Verdict::Reject(e),
+        };
+        if self.synced || !F::VERIFY_AFTER_RESYNC {
+            return Verdict::Frame(n);
+        }
+        self.verify(c, n, at_end)
+    }
+
+    /// The resync verification of a frame of `n` bytes at the start of `c`
+    /// (out of line: a clean stream never needs it).
+    #[inline(never)]
+    fn verify(&self, c: &[u8], n: usize, at_end: bool) -> Verdict<F::Error> {
+        // Verification looks at no more than the buffer could hold, so its
+        // answer is the same whether the bytes arrived in one chunk or many.
+        let at_end = at_end && c.len() <= N;
+        let c = &c[..c.len().min(N)];
+        let mut p = 1;
+        while p < n {
+            p += self.framing.find_start(&c[p..n]);
+            if p >= n {
+                break;
+            }
+            let inner_end = match self.framing.check(&c[p..], at_end) {
+                Check::Frame(m) if m > 0 && p + m <= c.len() => p + m,
+                Check::Frame(m) | Check::Need(m) if !at_end => {
+                    return self.wait_or_accept(n, p + m)
+                }
+                // At the end of input an unfinished inner candidate is no frame.
+                Check::Frame(_) | Check::Need(_) | Check::Reject(_) => {
+                    p += 1;
+                    continue;
+                }
+            };
+            // A frame starts inside the candidate. If both end together, what
+            // follows cannot tell them apart: the later start wins (garbage
+            // before a frame is likelier than a frame at a payload's tail).
+            // Otherwise keep the candidate only if what follows confirms it.
+            if inner_end == n {
+                return Verdict::Superseded(n);
+            }
+            return match self.confirmed(c, n, at_end) {
+                Ok(true) => Verdict::Frame(n),
+                Ok(false) => Verdict::Superseded(n),
+                Err(need) => self.wait_or_accept(n, need),
+            };
+        }
+        Verdict::Frame(n)
+    }
+
+    /// Is the frame `c[..end]` followed by a plausible header or the end of
+    /// input? `Err(n)`: cannot tell before `c` has `n` bytes.
+    fn confirmed(&self, c: &[u8], end: usize, at_end: bool) -> Result<bool, usize> {
+        let after = &c[end..];
+        if after.len() < F::HEADER_LEN.max(1) && !at_end {
+            return Err(end + F::HEADER_LEN.max(1));
+        }
+        if after.is_empty() {
+            return Ok(true);
+        }
+        let header = &after[..after.len().min(F::HEADER_LEN.max(1))];
+        Ok(self.framing.find_start(header) == 0
+            && !matches!(self.framing.check(header, false), Check::Reject(_)))
+    }
+
+    /// Wait for `need` bytes if the buffer can hold them; otherwise accept the
+    /// frame of `n` bytes unverified rather than stall.
+    fn wait_or_accept(&self, n: usize, need: usize) -> Verdict<F::Error> {
+        if need <= N {
+            Verdict::Need(need)
+        } else {
+            Verdict::Frame(n)
+        }
+    }
+
     /// Turn a step into the event it stands for. This is the one place a
     /// frame is parsed: the in-place and buffered paths meet here on a small
     /// value (an offset and a slice), so the message is built once, straight
-    /// into the returned event, instead of being built on each path and
-    /// copied where they join.
+    /// into the returned event, instead of on each path and then copied where
+    /// they join.
     #[inline(always)]
     fn emit<'a>(
         &'a mut self,
@@ -375,6 +527,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             Step::Buffered(n) => {
                 let offset = self.buf_offset;
                 self.need = 0;
+                self.synced = true;
                 if n >= self.len {
                     // The frame is all the buffer holds: the buffer is empty
                     // from now on (the event still borrows the bytes, which
@@ -398,6 +551,9 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         let data: &'i [u8] = input;
         let pos = self.framing.find_start(data);
         self.stats.skipped += pos as u64;
+        if pos > 0 {
+            self.synced = false;
+        }
         if pos >= data.len() {
             self.stats.bytes += data.len() as u64;
             *input = &[];
@@ -405,16 +561,17 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         }
         let offset = self.stats.bytes + pos as u64;
         let candidate = &data[pos..];
-        let error = match self.framing.check(candidate, false) {
-            Check::Frame(n) if n > 0 && n <= candidate.len() => {
+        let error = match self.resolve(candidate, false) {
+            Verdict::Frame(n) => {
                 self.stats.bytes += (pos + n) as u64;
                 *input = &data[pos + n..];
+                self.synced = true;
                 return Step::InPlace {
                     offset,
                     raw: &candidate[..n],
                 };
             }
-            Check::Frame(n) | Check::Need(n) if candidate.len() < N => {
+            Verdict::Need(n) if candidate.len() < N => {
                 // Only a frame that straddles the end of the chunk is copied.
                 self.buf[..candidate.len()].copy_from_slice(candidate);
                 self.len = candidate.len();
@@ -426,10 +583,11 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             }
             // The framing asks for more than the buffer holds: a framing bug,
             // but never a reason to stall.
-            Check::Frame(_) | Check::Need(_) => self.framing.truncated(candidate.len()),
-            Check::Reject(error) => error,
+            Verdict::Need(_) => self.reject_kind(self.framing.truncated(candidate.len())),
+            Verdict::Reject(error) => self.reject_kind(error),
+            Verdict::Superseded(n) => self.supersede_kind(n),
         };
-        self.count_rejection(&error);
+        self.synced = false;
         self.stats.skipped += 1;
         self.stats.bytes += (pos + 1) as u64;
         *input = &data[pos + 1..];
@@ -442,11 +600,28 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             return self.step_in_place(input);
         }
         let data: &'i [u8] = input;
-        let stored = self.len;
+        let mut stored = self.len;
         let take = data.len().min(N - stored);
         // Append input tentatively: bytes the candidate does not use are given
         // back to the caller.
         self.buf[stored..stored + take].copy_from_slice(&data[..take]);
+        let total = stored + take;
+        // A start that could not be confirmed at the end of the last chunk (a
+        // sync word cut in two) may turn out to be none: drop it silently, as
+        // `find_start` would have if the bytes had come in one chunk.
+        let skip = self.framing.find_start(&self.buf[..total]).min(stored);
+        if skip > 0 {
+            self.buf.copy_within(skip..total, 0);
+            self.buf_offset += skip as u64;
+            self.stats.skipped += skip as u64;
+            self.synced = false;
+            self.need = 0;
+            stored -= skip;
+            self.len = stored;
+            if stored == 0 {
+                return self.step_in_place(input);
+            }
+        }
         let total = stored + take;
         if total < self.need {
             // Cannot resolve yet: keep everything without asking the framing.
@@ -455,8 +630,8 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             *input = &data[take..];
             return Step::Done;
         }
-        match self.framing.check(&self.buf[..total], false) {
-            Check::Frame(n) if n > 0 && n <= total => {
+        match self.resolve(&self.buf[..total], false) {
+            Verdict::Frame(n) => {
                 let used = n.saturating_sub(stored);
                 self.stats.bytes += used as u64;
                 *input = &data[used..];
@@ -465,18 +640,25 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
                 self.len = n.max(stored);
                 Step::Buffered(n)
             }
-            Check::Frame(n) | Check::Need(n) if total < N => {
+            Verdict::Need(n) if total < N => {
                 self.stats.bytes += take as u64;
                 *input = &data[take..];
                 self.len = total;
                 self.need = n.min(N);
                 Step::Done
             }
-            Check::Frame(_) | Check::Need(_) => {
-                let error = self.framing.truncated(total);
+            Verdict::Need(_) => {
+                let error = self.reject_kind(self.framing.truncated(total));
                 self.reject_buffered(error)
             }
-            Check::Reject(error) => self.reject_buffered(error),
+            Verdict::Reject(error) => {
+                let error = self.reject_kind(error);
+                self.reject_buffered(error)
+            }
+            Verdict::Superseded(n) => {
+                let error = self.supersede_kind(n);
+                self.reject_buffered(error)
+            }
         }
     }
 
@@ -485,7 +667,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
     fn reject_buffered<'i>(&mut self, error: F::Error) -> Step<'i, F::Error> {
         let offset = self.buf_offset;
         self.need = 0;
-        self.count_rejection(&error);
+        self.synced = false;
         self.stats.skipped += 1;
         self.buf.copy_within(1..self.len, 0);
         self.len -= 1;
@@ -494,25 +676,21 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         Step::Rejected(Rejected { offset, error })
     }
 
-    fn count_rejection(&mut self, error: &F::Error) {
-        if self.framing.is_checksum_error(error) {
+    /// Count a rejection by its kind and hand the error back.
+    fn reject_kind(&mut self, error: F::Error) -> F::Error {
+        if self.framing.is_checksum_error(&error) {
             self.stats.checksum_errors += 1;
         } else {
             self.stats.rejected += 1;
         }
+        error
     }
-}
 
-/// What one step of decoding found, before any frame is parsed.
-enum Step<'a, E> {
-    /// Every byte offered was taken; nothing to report yet.
-    Done,
-    /// A candidate was rejected.
-    Rejected(Rejected<E>),
-    /// A frame wholly inside the caller's input.
-    InPlace { offset: u64, raw: &'a [u8] },
-    /// A frame of this many bytes at the front of the internal buffer.
-    Buffered(usize),
+    /// Count a superseded candidate of `n` bytes and make its error.
+    fn supersede_kind(&mut self, n: usize) -> F::Error {
+        self.stats.superseded += 1;
+        self.framing.superseded(n)
+    }
 }
 
 #[inline(always)]
@@ -583,4 +761,25 @@ impl<F: Framing, const N: usize> Iterator for Flush<'_, F, N> {
     fn next(&mut self) -> Option<Self::Item> {
         self.decoder.finish().map(owned_event::<F>)
     }
+}
+
+/// The engine's decision for a candidate: the framing's, refined by the resync
+/// verification.
+/// What one step of decoding found, before any frame is parsed.
+enum Step<'a, E> {
+    /// Every byte offered was taken; nothing to report yet.
+    Done,
+    /// A candidate was rejected.
+    Rejected(Rejected<E>),
+    /// A frame wholly inside the caller's input.
+    InPlace { offset: u64, raw: &'a [u8] },
+    /// A frame of this many bytes at the front of the internal buffer.
+    Buffered(usize),
+}
+
+enum Verdict<E> {
+    Need(usize),
+    Frame(usize),
+    Reject(E),
+    Superseded(usize),
 }

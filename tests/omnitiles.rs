@@ -749,3 +749,103 @@ fn nan_bit_patterns_round_trip() {
     assert_eq!(back.imu.unwrap().ax.to_bits(), 0x7fc0_1234);
     assert_eq!(&*FrameBuf::<53>::encode(&back).unwrap(), &*wire);
 }
+
+#[test]
+fn garbage_that_sums_right_does_not_swallow_a_real_frame() {
+    let brake = cmd(Command::Brake { motor: M1 });
+    let extend = cmd(Command::Extend {
+        motor: M2,
+        speed: 200,
+    });
+    // `a5 70 eb a5 32 32` is a valid base-velocity frame made of garbage and
+    // the real brake that follows it; both end at the same byte.
+    let input = hex("13 a5 70 eb a5 32 32 a5 71 71");
+    for chunk in 1..=input.len() {
+        let events = decode_chunked(Framing::commands(), &input, chunk);
+        assert_eq!(
+            events,
+            [
+                Err(Rejected {
+                    offset: 1,
+                    error: Error::Superseded { len: 6 }
+                }),
+                Ok(Framed {
+                    offset: 4,
+                    len: 3,
+                    message: brake
+                }),
+                Ok(Framed {
+                    offset: 7,
+                    len: 3,
+                    message: cmd(Command::BaseBrake)
+                }),
+            ],
+            "chunk {chunk}"
+        );
+    }
+    // `a5 70 00 2b a5 40` sums right and ends inside the real M2 extend.
+    let input = hex("13 a5 70 00 2b a5 40 c8 08 a5 71 71");
+    assert_eq!(
+        packets(&decode(Framing::commands(), &input)),
+        [extend, cmd(Command::BaseBrake)]
+    );
+    let mut decoder = Decoder::new(Framing::commands());
+    decoder.feed(&input).for_each(drop);
+    assert_eq!(decoder.stats().superseded, 1);
+    // Right after a frame the same bytes are trusted: a clean stream is
+    // never delayed.
+    let input = hex("a5 50 50 a5 70 eb a5 32 32");
+    assert_eq!(
+        packets(&decode(Framing::commands(), &input)),
+        [
+            cmd(Command::Ping),
+            cmd(Command::BaseVelocity {
+                vx: -21,
+                vy: -91,
+                omega: 0x32
+            })
+        ]
+    );
+}
+
+#[cfg(feature = "bytes")]
+#[test]
+fn encode_into_bufmut() {
+    let mut buf = bytes::BytesMut::new();
+    for (wire, command) in command_vectors() {
+        let before = buf.len();
+        let n = command.encode_buf(&mut buf).unwrap();
+        assert_eq!(&buf[before..], &hex(wire)[..]);
+        assert_eq!(n, hex(wire).len());
+    }
+    let (_, t) = telemetry_vectors().pop().unwrap();
+    let mut small = [0u8; 10];
+    let mut slice: &mut [u8] = &mut small;
+    assert_eq!(
+        t.encode_buf(&mut slice),
+        Err(robowire::EncodeError::BufferTooSmall {
+            needed: 53,
+            available: 10
+        })
+    );
+}
+
+#[test]
+fn short_frame_followed_by_garbage_is_unconfirmed() {
+    let mut input = hex(T7);
+    input.extend([0x11; 60]);
+    let events = decode(Framing::ANY, &input);
+    assert_eq!(
+        events,
+        [Err(Rejected {
+            offset: 0,
+            error: Error::Unconfirmed
+        })]
+    );
+    // With its layout alone it needs no confirmation.
+    let events = decode(Framing::telemetry(Layouts::only(Layout::Pos7)), &input);
+    assert_eq!(
+        packets(&events),
+        [Packet::Telemetry(Telemetry::from_frame(&hex(T7)).unwrap())]
+    );
+}

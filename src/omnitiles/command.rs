@@ -4,6 +4,8 @@ use super::{checksum, START};
 use crate::encode::{check_room, Encode, EncodeError};
 
 /// One of the tile's two linear actuators.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Motor {
     /// M1: 150 mm stroke.
@@ -49,6 +51,8 @@ pub mod id {
 /// let n = Command::Extend { motor: Motor::M1, speed: 200 }.encode(&mut out).unwrap();
 /// assert_eq!(&out[..n], [0xa5, 0x30, 0xc8, 0xf8]);
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Command {
     /// `0x50`: connectivity check; the tile logs it and does not reply.

@@ -32,6 +32,7 @@ use crate::stream::{owned_event, Framed, OwnedEvent, Stats};
 ///     Packet::Command(Command::Brake { motor: Motor::M2 }),
 /// ]);
 /// ```
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone)]
 pub struct DatagramDecoder {
     framing: Framing,
@@ -45,15 +46,7 @@ impl DatagramDecoder {
         Self {
             framing,
             offset: 0,
-            stats: Stats {
-                bytes: 0,
-                frames: 0,
-                frame_bytes: 0,
-                skipped: 0,
-                checksum_errors: 0,
-                rejected: 0,
-                malformed: 0,
-            },
+            stats: Stats::new(),
         }
     }
 
@@ -154,6 +147,19 @@ impl Iterator for Datagram<'_, '_> {
                     r.offset += self.base;
                     r
                 }),
+        )
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl defmt::Format for Datagram<'_, '_> {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(
+            f,
+            "Datagram {{ base: {=u64}, unread: {=usize}, finished: {=bool} }}",
+            self.base,
+            self.rest.len(),
+            self.finished
         )
     }
 }

@@ -2,6 +2,8 @@
 
 /// A rejected OmniTiles candidate. Never fatal: the decoder has already
 /// dropped the candidate's start byte and carries on.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
@@ -31,6 +33,14 @@ pub enum Error {
     #[error("input ended inside a frame after {len} bytes")]
     Truncated {
         /// Bytes of the candidate that arrived.
+        len: usize,
+    },
+    /// The candidate validated after a resync, but a frame starting inside it
+    /// validated too and only that frame is followed by a plausible header: the
+    /// candidate was most likely garbage that happened to sum right.
+    #[error("a {len}-byte candidate overlapped a confirmed frame and was set aside")]
+    Superseded {
+        /// The candidate's length.
         len: usize,
     },
 }

@@ -33,6 +33,8 @@ use crate::stream::{self, Check};
 /// in 2^24. In noise, a short frame followed by garbage is dropped
 /// ([`Error::Unconfirmed`]) rather than guessed at. Name a single layout when
 /// you know it.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Framing {
     commands: bool,
@@ -115,6 +117,7 @@ impl Framing {
     #[inline(never)]
     fn check_layouts(&self, longest: Layout, c: &[u8], at_end: bool) -> Check<Error> {
         let mut error = Error::Unconfirmed;
+        let mut unconfirmed = false;
         // Running sum over bytes 1.. so each length costs only its new bytes.
         let mut sum: u8 = 0;
         let mut summed = 1;
@@ -145,11 +148,17 @@ impl Framing {
             }
             match self.confirms(&c[len..], at_end) {
                 Some(true) => return Check::Frame(len),
-                Some(false) => error = Error::Unconfirmed,
+                Some(false) => unconfirmed = true,
                 None => return Check::Need(len + 2),
             }
         }
-        Check::Reject(error)
+        // A shorter layout that validated says more than the longest one's
+        // checksum: a frame was probably here, followed by garbage.
+        Check::Reject(if unconfirmed {
+            Error::Unconfirmed
+        } else {
+            error
+        })
     }
 }
 
@@ -233,6 +242,9 @@ impl stream::Framing for Framing {
     type Message<'a> = Packet;
     type Owned = Packet;
 
+    /// `a5` and the id: enough to reject an unknown id.
+    const HEADER_LEN: usize = 2;
+
     #[inline]
     fn find_start(&self, bytes: &[u8]) -> usize {
         // On a clean stream the next frame starts right here: skip the scan.
@@ -292,6 +304,10 @@ impl stream::Framing for Framing {
 
     fn truncated(&self, len: usize) -> Error {
         Error::Truncated { len }
+    }
+
+    fn superseded(&self, len: usize) -> Error {
+        Error::Superseded { len }
     }
 
     fn is_checksum_error(&self, error: &Error) -> bool {

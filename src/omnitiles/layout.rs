@@ -2,6 +2,12 @@
 
 /// One telemetry layout. All layouts share the id `0x60` and are told apart only
 /// by their total length (spec §4).
+///
+/// With the `serde` feature a layout is written as its [`name`](Layout::name)
+/// (`"pos7"`, …, `"ble53"`), as in the command-line tool's JSON.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", serde(rename_all = "lowercase"))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Layout {
     /// 7 bytes: motor positions (SDK variant, never emitted by firmware).
@@ -100,6 +106,11 @@ impl core::fmt::Display for Layout {
 /// assert_eq!(Layouts::DOCUMENTED.len(), 4);
 /// assert_eq!(Layouts::DOCUMENTED.longest(), Some(Layout::Ble53));
 /// ```
+///
+/// With the `serde` feature a set is written as a number, its bits (bit `i`
+/// is [`Layout::ALL`]`[i]`, so [`Layouts::DOCUMENTED`] is `23`), and a number
+/// with an undefined bit (above `0x1f`) is refused when deserializing.
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Layouts(u8);
 
@@ -172,5 +183,30 @@ impl Default for Layouts {
 impl FromIterator<Layout> for Layouts {
     fn from_iter<I: IntoIterator<Item = Layout>>(iter: I) -> Self {
         iter.into_iter().fold(Layouts::NONE, Layouts::with)
+    }
+}
+
+// Written as the set's bits: 1 = pos7, 2 = uwb15, 4 = uwbtof17, 8 = spi45,
+// 16 = ble53. A number with any other bit set is refused, so a deserialized
+// set never holds an undefined layout.
+#[cfg(feature = "serde")]
+impl serde::Serialize for Layouts {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_u8(self.0)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for Layouts {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        use serde::de::{Error, Unexpected};
+        let bits = <u8 as serde::Deserialize>::deserialize(deserializer)?;
+        if bits & !Layouts::ALL.0 != 0 {
+            return Err(D::Error::invalid_value(
+                Unexpected::Unsigned(bits.into()),
+                &"a set of OmniTiles telemetry layouts, 0..=31",
+            ));
+        }
+        Ok(Layouts(bits))
     }
 }

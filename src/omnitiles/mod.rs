@@ -62,9 +62,9 @@ pub const START: u8 = 0xA5;
 /// The longest frame of any kind (the 53-byte BLE telemetry).
 pub const MAX_FRAME_LEN: usize = Telemetry::MAX_LEN;
 
-/// Internal buffer size: the longest frame plus the two bytes of the next
-/// header that can confirm a shorter telemetry layout, rounded up.
-pub const BUFFER_LEN: usize = 64;
+/// Internal buffer size: room for the longest frame, a frame starting inside
+/// it and the next header after that (the engine's resync verification).
+pub const BUFFER_LEN: usize = 128;
 
 /// The OmniTiles stream decoder.
 pub type Decoder = StreamDecoder<Framing, BUFFER_LEN>;
@@ -79,6 +79,8 @@ pub fn checksum(id_and_payload: &[u8]) -> u8 {
 }
 
 /// Any OmniTiles message.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Packet {
     /// Host → tile.

@@ -12,6 +12,13 @@ pub const NO_READING: u16 = 0xFFFF;
 ///
 /// Equality compares bit patterns, so a sample with NaNs equals itself and a
 /// decoded sample equals the one that was encoded, bit for bit.
+///
+/// With the `serde` feature the values are written as numbers. Formats
+/// without NaN and infinities lose them: `serde_json` writes them as `null`,
+/// which does not deserialize back into an `f32`. Binary formats (postcard,
+/// bincode) keep every bit pattern.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Imu {
     /// Acceleration along x, m/s².
@@ -73,6 +80,14 @@ impl Eq for Imu {}
 /// assert_eq!((t.m1_pos, t.m2_pos), (Some(2000), Some(1000)));
 /// assert_eq!(t.uwb, None); // not carried by the 7-byte layout
 /// ```
+///
+/// With the `serde` feature, deserializing accepts only telemetry whose field
+/// groups match its layout ([`is_consistent`](Telemetry::is_consistent)), the
+/// telemetry that encodes. Where the layout carries ToF, a missing or `null`
+/// `tof` reads as `Some(None)`: JSON writes `Some(None)` and `None` alike as
+/// `null`, and the layout tells them apart.
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Telemetry {
     /// Which layout the frame had.
@@ -347,5 +362,46 @@ impl Encode for Telemetry {
         }
         out[len - 1] = checksum(&out[1..len - 1]);
         Ok(len)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for Telemetry {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        /// The fields as serialized; checked against the layout below.
+        #[derive(serde::Deserialize)]
+        #[serde(rename = "Telemetry")]
+        struct Fields {
+            layout: Layout,
+            m1_pos: Option<u16>,
+            m2_pos: Option<u16>,
+            uwb: Option<[Option<u16>; 4]>,
+            tof: Option<Option<u16>>,
+            imu: Option<Imu>,
+            m1_adcs: Option<[u16; 4]>,
+            m2_adcs: Option<[u16; 2]>,
+        }
+
+        let f = <Fields as serde::Deserialize>::deserialize(deserializer)?;
+        let tof = match f.tof {
+            None if f.layout.has_tof() => Some(None),
+            tof => tof,
+        };
+        let telemetry = Telemetry {
+            layout: f.layout,
+            m1_pos: f.m1_pos,
+            m2_pos: f.m2_pos,
+            uwb: f.uwb,
+            tof,
+            imu: f.imu,
+            m1_adcs: f.m1_adcs,
+            m2_adcs: f.m2_adcs,
+        };
+        if !telemetry.is_consistent() {
+            return Err(serde::de::Error::custom(
+                "telemetry field groups do not match the layout",
+            ));
+        }
+        Ok(telemetry)
     }
 }

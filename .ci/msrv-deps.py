@@ -1,0 +1,48 @@
+#!/usr/bin/env python3
+"""Check that every dependency of the library, with all features, resolves to
+a version whose rust-version is at most the MSRV, the way cargo's MSRV-aware
+resolver picks them for a user on that Rust. Run from a scratch copy of the
+crate: it rewrites Cargo.lock."""
+
+import json
+import os
+import subprocess
+import sys
+
+
+def version(text):
+    parts = [int(x) for x in text.split(".")[:3]]
+    return tuple(parts + [0] * (3 - len(parts)))
+
+
+def cargo(*args, **env):
+    return subprocess.run(
+        ["cargo", *args],
+        capture_output=True,
+        text=True,
+        check=True,
+        env={**os.environ, **env},
+    ).stdout
+
+
+def main():
+    msrv = sys.argv[1]
+    cargo("generate-lockfile", CARGO_RESOLVER_INCOMPATIBLE_RUST_VERSIONS="fallback")
+    tree = cargo("tree", "-e", "normal,build", "--all-features", "--prefix", "none", "--format", "{p}")
+    used = {tuple(line.split()[:2]) for line in tree.splitlines() if line.strip()}
+    meta = json.loads(cargo("metadata", "--format-version", "1", "--all-features"))
+    too_new = []
+    for package in sorted(meta["packages"], key=lambda p: p["name"]):
+        if (package["name"], "v" + package["version"]) not in used:
+            continue
+        needs = package.get("rust_version")
+        print(f'{package["name"]:20} {package["version"]:10} rust-version {needs or "-"}')
+        if needs and version(needs) > version(msrv):
+            too_new.append(f'{package["name"]} {package["version"]} needs Rust {needs}')
+    if too_new:
+        sys.exit(f"needs a newer Rust than {msrv}:\n  " + "\n  ".join(too_new))
+    print(f"every dependency of every feature builds with Rust {msrv}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,266 @@
+//! The protocol-neutral part of the tool: the decode loop over any
+//! [`StreamDecoder`], JSON-lines output, the end-of-run summary, and the
+//! encode loop over JSON lines. A protocol plugs in by implementing
+//! [`Protocol`].
+
+use crate::input::{ByteSource, Input, Lines};
+use crate::json::{Fields, JsonLine};
+use crate::Failure;
+use clap::Args;
+use robowire::stream::{Framing, OwnedEvent, Stats, StreamDecoder};
+use serde_json::Value;
+use std::io::{self, BufWriter, StdoutLock, Write};
+use std::path::PathBuf;
+
+/// What a protocol supplies to the tool: how its messages and rejections are
+/// printed, and how a JSON line becomes a frame.
+pub trait Protocol {
+    /// The protocol's framing, as its stream decoder uses it.
+    type Framing: Framing;
+
+    /// Write `type` and the message's fields.
+    fn describe(message: &<Self::Framing as Framing>::Owned, line: &mut JsonLine);
+
+    /// Write `error` and the error's details.
+    fn describe_error(error: &<Self::Framing as Framing>::Error, line: &mut JsonLine);
+
+    /// Read one JSON object (a line that is not a diagnostic event) and
+    /// append the frame's bytes to `frame`. The error names the problem; the
+    /// caller adds the input's name and the line number.
+    fn encode(fields: Fields<'_>, frame: &mut Vec<u8>) -> Result<(), String>;
+}
+
+/// Options every `decode` subcommand shares.
+#[derive(Debug, Args)]
+pub struct DecodeCommon {
+    /// Feed the decoder N bytes at a time (the output never depends on it).
+    ///
+    /// From a regular file the pieces are exactly N bytes; from stdin, a pipe
+    /// or a device each piece is what has arrived, at most N bytes.
+    #[arg(
+        long,
+        value_name = "N",
+        display_order = 3,
+        default_value_t = 4096,
+        value_parser = clap::value_parser!(u32).range(1..=(1 << 24)),
+    )]
+    pub chunk: u32,
+    /// Read hex text (whitespace, commas and 0x prefixes ignored) as one byte
+    /// stream instead of raw bytes.
+    #[arg(long, display_order = 4)]
+    pub hex: bool,
+    /// Print rejected candidates too, as objects with `offset` and `error`.
+    #[arg(long, display_order = 6)]
+    pub errors: bool,
+    /// The capture to read; `-` or absent for stdin.
+    #[arg(value_name = "INPUT")]
+    pub input: Option<PathBuf>,
+}
+
+/// Options every `encode` subcommand shares.
+#[derive(Debug, Args)]
+pub struct EncodeCommon {
+    /// Write hex text, one frame per line, instead of raw bytes.
+    #[arg(long)]
+    pub hex: bool,
+    /// JSON lines to read; `-` or absent for stdin.
+    #[arg(value_name = "INPUT")]
+    pub input: Option<PathBuf>,
+}
+
+/// Buffered stdout that turns a closed pipe into [`Failure::BrokenPipe`].
+pub struct Output {
+    out: BufWriter<StdoutLock<'static>>,
+}
+
+impl Output {
+    /// Lock stdout behind a buffer.
+    pub fn stdout() -> Self {
+        Output {
+            out: BufWriter::with_capacity(64 * 1024, io::stdout().lock()),
+        }
+    }
+
+    /// Write `bytes`.
+    pub fn write(&mut self, bytes: &[u8]) -> Result<(), Failure> {
+        self.out.write_all(bytes).map_err(Failure::stdout)
+    }
+
+    /// Write everything still buffered.
+    pub fn flush(&mut self) -> Result<(), Failure> {
+        self.out.flush().map_err(Failure::stdout)
+    }
+}
+
+/// Prints decode events as JSON lines.
+pub struct Printer<'o> {
+    out: &'o mut Output,
+    line: JsonLine,
+    errors: bool,
+}
+
+impl<'o> Printer<'o> {
+    /// A printer writing to `out`; rejections are printed when `errors`.
+    pub fn new(out: &'o mut Output, errors: bool) -> Self {
+        Printer {
+            out,
+            line: JsonLine::default(),
+            errors,
+        }
+    }
+
+    /// Print one event.
+    pub fn event<P: Protocol>(&mut self, event: OwnedEvent<P::Framing>) -> Result<(), Failure> {
+        let line = &mut self.line;
+        match event {
+            Ok(frame) => {
+                line.begin();
+                line.field("offset", frame.offset);
+                line.field("len", frame.len);
+                P::describe(&frame.message, line);
+            }
+            Err(rejected) if self.errors => {
+                line.begin();
+                line.field("offset", rejected.offset);
+                P::describe_error(&rejected.error, line);
+            }
+            Err(_) => return Ok(()),
+        }
+        self.out.write(line.end())
+    }
+
+    /// Write out everything printed so far (before waiting for input, so a
+    /// live stream's frames appear as they arrive).
+    pub fn flush(&mut self) -> Result<(), Failure> {
+        self.out.flush()
+    }
+}
+
+/// The end of a decode whose output went through: the counters, and the
+/// input problem that stopped or marred it, if any.
+#[derive(Debug)]
+pub struct Decoded {
+    /// The decoder's counters.
+    pub stats: Stats,
+    /// Why the input could not be read to its end (or which of its lines
+    /// were skipped); reported after the summary.
+    pub failure: Option<Failure>,
+}
+
+/// Decode everything `source` yields, `chunk` bytes at a time, then finish
+/// the stream; every event goes to `printer`. An input failure stops the
+/// decode (without finishing the stream: the input did not end) and comes
+/// back in [`Decoded::failure`]; an output failure is the error.
+pub fn decode_stream<P: Protocol, const N: usize>(
+    mut decoder: StreamDecoder<P::Framing, N>,
+    source: &mut dyn ByteSource,
+    chunk: usize,
+    printer: &mut Printer<'_>,
+) -> Result<Decoded, Failure> {
+    let mut buf = vec![0u8; chunk];
+    loop {
+        let n = match source.fill(&mut buf) {
+            Ok(0) => break,
+            Ok(n) => n,
+            Err(failure) => {
+                return Ok(Decoded {
+                    stats: decoder.stats(),
+                    failure: Some(failure),
+                })
+            }
+        };
+        for event in decoder.feed(&buf[..n]) {
+            printer.event::<P>(event)?;
+        }
+        // Before a read that may wait, show what has been decoded so far.
+        if source.may_wait() {
+            printer.flush()?;
+        }
+    }
+    for event in decoder.flush() {
+        printer.event::<P>(event)?;
+    }
+    Ok(Decoded {
+        stats: decoder.stats(),
+        failure: None,
+    })
+}
+
+/// The one-line summary printed on stderr at the end of a decode.
+pub fn summary(stats: &Stats) -> String {
+    format!(
+        "robowire: {} frames, {} bytes, {} bytes skipped, {} checksum failures, \
+         {} other rejections, {} malformed",
+        stats.frames,
+        stats.bytes,
+        stats.skipped,
+        stats.checksum_errors,
+        stats.rejected,
+        stats.malformed
+    )
+}
+
+/// Encode every JSON line of `input` with protocol `P`, writing raw bytes or,
+/// with `hex`, one line of hex per frame. A malformed line is reported on
+/// stderr with its number, nothing is written for it, and the run goes on;
+/// the result is then [`Failure::Reported`]. Blank lines and diagnostic
+/// events (objects with `error` and no `type`, as `decode --errors` prints
+/// them) are skipped.
+pub fn encode_lines<P: Protocol>(input: Input, hex: bool, out: &mut Output) -> Result<(), Failure> {
+    let mut lines = Lines::new(input);
+    let mut frame = Vec::new();
+    let mut text = Vec::new();
+    let mut bad = 0u64;
+    loop {
+        // Flush before a read that may wait, so frames go out as lines arrive.
+        if !lines.has_buffered() {
+            out.flush()?;
+        }
+        let Some((number, line)) = lines.next_line()? else {
+            break;
+        };
+        if line.iter().all(u8::is_ascii_whitespace) {
+            continue;
+        }
+        frame.clear();
+        match encode_line::<P>(line, &mut frame) {
+            Ok(()) if frame.is_empty() => continue,
+            Ok(()) => {}
+            Err(message) => {
+                eprintln!("robowire: {}: line {number}: {message}", lines.name());
+                bad += 1;
+                continue;
+            }
+        }
+        if hex {
+            text.clear();
+            for (i, byte) in frame.iter().enumerate() {
+                let sep = if i == 0 { "" } else { " " };
+                // Writing into a Vec cannot fail.
+                let _ = write!(text, "{sep}{byte:02x}");
+            }
+            text.push(b'\n');
+            out.write(&text)?;
+        } else {
+            out.write(&frame)?;
+        }
+    }
+    if bad > 0 {
+        let s = if bad == 1 { "" } else { "s" };
+        return Err(Failure::Reported(format!("{bad} malformed line{s}")));
+    }
+    Ok(())
+}
+
+/// One line: a frame appended to `frame`, nothing for a diagnostic event, or
+/// the reason it is malformed.
+fn encode_line<P: Protocol>(line: &[u8], frame: &mut Vec<u8>) -> Result<(), String> {
+    let value: Value = serde_json::from_slice(line).map_err(|e| format!("not valid JSON: {e}"))?;
+    let map = value
+        .as_object()
+        .ok_or_else(|| format!("expected a JSON object, found {value}"))?;
+    if !map.contains_key("type") && map.contains_key("error") {
+        return Ok(());
+    }
+    P::encode(Fields::new(map), frame)
+}

@@ -1,0 +1,172 @@
+//! `robowire`: decode captures of robot serial protocols into JSON lines, and
+//! encode JSON lines back into frames.
+//!
+//! The protocol-neutral parts live in [`driver`] (decode and encode loops,
+//! output, summary), [`input`] (files, stdin, hex) and [`json`]; each protocol
+//! is one module implementing [`driver::Protocol`] plus its own options
+//! ([`omnitiles`]). Built only with the `cli` feature.
+
+mod driver;
+mod input;
+mod json;
+mod omnitiles;
+mod telemetrix;
+
+use clap::{Parser, Subcommand};
+use std::io;
+use std::process::ExitCode;
+
+const ABOUT: &str = "Decode and encode robot serial protocol captures as JSON lines";
+
+const LONG_ABOUT: &str = "\
+Decode and encode robot serial protocol captures as JSON lines.
+
+  robowire decode omnitiles [--from tile|host|any] [--layout L[,L...]] [--chunk N]
+                            [--hex] [--datagrams] [--errors] [INPUT]
+  robowire encode omnitiles [--hex] [INPUT]
+
+decode prints one JSON object per decoded frame; encode reads the same objects and
+writes the frames' bytes, so `robowire decode omnitiles x.bin | robowire encode
+omnitiles` reproduces every decoded frame byte for byte. INPUT is a file, or `-`
+or absent for stdin. Streams of any size run in constant memory.
+
+Exit status: 0 on success, 2 on usage errors and invalid input, 1 on I/O errors.
+A closed stdout pipe ends the run quietly. `robowire decode omnitiles --help`
+documents the JSON schema.";
+
+#[derive(Debug, Parser)]
+#[command(name = "robowire", version, about = ABOUT, long_about = LONG_ABOUT)]
+struct Cli {
+    #[command(subcommand)]
+    command: Verb,
+}
+
+#[derive(Debug, Subcommand)]
+enum Verb {
+    /// Decode a capture into JSON lines, one per frame.
+    Decode {
+        #[command(subcommand)]
+        protocol: DecodeProtocol,
+    },
+    /// Encode JSON lines (as decode prints them) into frames.
+    Encode {
+        #[command(subcommand)]
+        protocol: EncodeProtocol,
+    },
+}
+
+#[derive(Debug, Subcommand)]
+enum DecodeProtocol {
+    /// OmniTiles: host commands and tile telemetry (0xA5, id, payload, sum).
+    Omnitiles(omnitiles::DecodeArgs),
+    /// Telemetrix4RpiPico: host commands and Pico reports (LEN, id, payload).
+    Telemetrix(telemetrix::DecodeArgs),
+}
+
+#[derive(Debug, Subcommand)]
+enum EncodeProtocol {
+    /// OmniTiles: commands and telemetry from JSON lines.
+    Omnitiles(omnitiles::EncodeArgs),
+    /// Telemetrix4RpiPico: commands and reports from JSON lines.
+    Telemetrix(telemetrix::EncodeArgs),
+}
+
+/// Why a run stopped early, and so its exit status.
+#[derive(Debug)]
+pub enum Failure {
+    /// Options that do not go together (exit 2).
+    Usage(String),
+    /// Input that is not what the options say it is (exit 2).
+    Invalid(String),
+    /// Problems already reported line by line; this sums them up (exit 2).
+    Reported(String),
+    /// Reading or writing failed (exit 1).
+    Io {
+        /// The file or stream.
+        context: String,
+        /// What failed.
+        error: io::Error,
+    },
+    /// Whoever reads stdout stopped reading: end quietly (exit 0).
+    BrokenPipe,
+}
+
+impl Failure {
+    /// A failed write to stdout.
+    pub fn stdout(error: io::Error) -> Failure {
+        if error.kind() == io::ErrorKind::BrokenPipe {
+            Failure::BrokenPipe
+        } else {
+            Failure::Io {
+                context: "stdout".to_owned(),
+                error,
+            }
+        }
+    }
+
+    fn report(&self) -> ExitCode {
+        match self {
+            Failure::Usage(message) => {
+                eprintln!("error: {message}\n\nFor more information, try '--help'.");
+                ExitCode::from(2)
+            }
+            Failure::Invalid(message) | Failure::Reported(message) => {
+                eprintln!("robowire: {message}");
+                ExitCode::from(2)
+            }
+            Failure::Io { context, error } => {
+                eprintln!("robowire: {context}: {error}");
+                ExitCode::from(1)
+            }
+            Failure::BrokenPipe => ExitCode::SUCCESS,
+        }
+    }
+}
+
+/// What a successful run has to say at the end.
+enum Done {
+    /// A decode: its summary line for stderr.
+    Decoded(driver::Decoded),
+    /// An encode: nothing to add.
+    Encoded,
+}
+
+fn run(verb: &Verb, out: &mut driver::Output) -> Result<Done, Failure> {
+    match verb {
+        Verb::Decode {
+            protocol: DecodeProtocol::Omnitiles(args),
+        } => omnitiles::decode(args, out).map(Done::Decoded),
+        Verb::Encode {
+            protocol: EncodeProtocol::Omnitiles(args),
+        } => omnitiles::encode(args, out).map(|()| Done::Encoded),
+        Verb::Decode {
+            protocol: DecodeProtocol::Telemetrix(args),
+        } => telemetrix::decode(args, out).map(Done::Decoded),
+        Verb::Encode {
+            protocol: EncodeProtocol::Telemetrix(args),
+        } => telemetrix::encode(args, out).map(|()| Done::Encoded),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let mut out = driver::Output::stdout();
+    let result = run(&cli.command, &mut out);
+    // Frames decoded before a failure are still written.
+    let flushed = out.flush();
+    let done = match (result, flushed) {
+        (Err(Failure::BrokenPipe), _) | (_, Err(Failure::BrokenPipe)) => return ExitCode::SUCCESS,
+        (Err(failure), _) | (Ok(_), Err(failure)) => return failure.report(),
+        (Ok(done), Ok(())) => done,
+    };
+    match done {
+        Done::Decoded(decoded) => {
+            eprintln!("{}", driver::summary(&decoded.stats));
+            match decoded.failure {
+                Some(failure) => failure.report(),
+                None => ExitCode::SUCCESS,
+            }
+        }
+        Done::Encoded => ExitCode::SUCCESS,
+    }
+}

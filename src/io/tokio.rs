@@ -1,0 +1,319 @@
+//! A [`tokio_util::codec`] decoder and encoder for every protocol (feature
+//! `tokio-util-07`, needs `std`).
+//!
+//! [`FrameCodec<F, N>`](FrameCodec) wraps a [`StreamDecoder<F, N>`] and
+//! implements [`Decoder`] and [`Encoder<M>`] for every [`Encode`] message `M`,
+//! so a serial port, a TCP stream or a `tokio::io::duplex` pipe becomes a
+//! `Stream` of packets and a `Sink` of messages with `FramedRead`,
+//! `FramedWrite` or `Framed`.
+//!
+//! `FramedRead` ends the stream at the first `Err`, so a rejected candidate
+//! (bad checksum, unknown id, garbage) is never an error here. What the stream
+//! yields is chosen by the codec's last type parameter:
+//!
+//! * [`Messages`] (the default): [`Framed`] messages only; rejections are
+//!   counted in [`stats`](FrameCodec::stats) and the latest is kept in
+//!   [`last_rejected`](FrameCodec::last_rejected);
+//! * [`Events`] ([`FrameCodec::events`]): every [`OwnedEvent`], frames and
+//!   rejections alike.
+//!
+//! At the end of the input, `decode_eof` resolves the candidate still buffered
+//! with [`StreamDecoder::finish`]: a complete frame comes out, trailing garbage
+//! or a truncated frame is a rejection like any other (an event, or a count),
+//! never an error. The codec then takes a new stream, should the source
+//! produce more bytes after its end.
+//!
+//! Every protocol has aliases: [`OmniTilesCodec`], [`Pixy2HostCodec`] and
+//! [`Pixy2DeviceCodec`], [`TelemetrixHostCodec`] and [`TelemetrixPicoCodec`].
+//!
+//! ```
+//! use futures_util::{SinkExt, StreamExt};
+//! use robowire::io::tokio::OmniTilesCodec;
+//! use robowire::omnitiles::{Command, Framing, Motor, Packet};
+//! use tokio_util::codec::{FramedRead, FramedWrite};
+//!
+//! # #[tokio::main(flavor = "current_thread")]
+//! # async fn main() -> std::io::Result<()> {
+//! let (host, tile) = tokio::io::duplex(64);
+//! let mut to_tile = FramedWrite::new(host, OmniTilesCodec::default());
+//! let mut at_tile = FramedRead::new(tile, OmniTilesCodec::new(Framing::commands()));
+//!
+//! to_tile.send(Command::Extend { motor: Motor::M1, speed: 200 }).await?;
+//! to_tile.send(Command::Ping).await?;
+//! drop(to_tile); // end of input
+//!
+//! let mut received = Vec::new();
+//! while let Some(frame) = at_tile.next().await {
+//!     received.push(frame?.message);
+//! }
+//! assert_eq!(received, [
+//!     Packet::Command(Command::Extend { motor: Motor::M1, speed: 200 }),
+//!     Packet::Command(Command::Ping),
+//! ]);
+//! # Ok(())
+//! # }
+//! ```
+
+use core::fmt;
+use core::marker::PhantomData;
+use std::io;
+
+use bytes::{Buf, BytesMut};
+use tokio_util::codec::{Decoder, Encoder};
+
+use crate::encode::Encode;
+use crate::stream::{owned_event, Framed, Framing, OwnedEvent, Rejected, Stats, StreamDecoder};
+
+/// The OmniTiles codec: `FramedRead::new(port, OmniTilesCodec::default())`
+/// yields [`Framed<Packet>`](crate::omnitiles::Packet) and accepts commands and
+/// telemetry in the documented layouts ([`Framing::ANY`](crate::omnitiles::Framing::ANY)).
+pub type OmniTilesCodec<Y = Messages> =
+    FrameCodec<crate::omnitiles::Framing, { crate::omnitiles::BUFFER_LEN }, Y>;
+
+/// The Pixy2 host-side codec: yields responses
+/// ([`Packet<ResponseBuf>`](crate::pixy2::ResponseBuf)) and encodes requests.
+pub type Pixy2HostCodec<Y = Messages> =
+    FrameCodec<crate::pixy2::Framing<crate::pixy2::Host>, { crate::pixy2::HOST_BUFFER }, Y>;
+
+/// The Pixy2 device-side codec (a simulated Pixy2): yields requests and
+/// encodes responses.
+pub type Pixy2DeviceCodec<Y = Messages> =
+    FrameCodec<crate::pixy2::Framing<crate::pixy2::Device>, { crate::pixy2::DEVICE_BUFFER }, Y>;
+
+/// The Telemetrix host-side codec: yields reports
+/// ([`OwnedReport`](crate::telemetrix::OwnedReport)) and encodes commands.
+pub type TelemetrixHostCodec<Y = Messages> =
+    FrameCodec<crate::telemetrix::ReportFraming, { crate::telemetrix::REPORT_BUFFER }, Y>;
+
+/// The Telemetrix Pico-side codec (a simulated board): yields commands and
+/// encodes reports.
+pub type TelemetrixPicoCodec<Y = Messages> =
+    FrameCodec<crate::telemetrix::CommandFraming, { crate::telemetrix::COMMAND_BUFFER }, Y>;
+
+/// A [`Decoder`] and [`Encoder`] for framing `F` with a decoder buffer of `N`
+/// bytes; `Y` chooses what the decoder yields ([`Messages`] or [`Events`]).
+pub struct FrameCodec<F: Framing, const N: usize, Y = Messages> {
+    decoder: StreamDecoder<F, N>,
+    last_rejected: Option<Rejected<F::Error>>,
+    yields: PhantomData<fn() -> Y>,
+}
+
+/// The codec yields [`Framed`] messages and counts rejections.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Messages {}
+
+/// The codec yields every [`OwnedEvent`]: frames and rejections.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Events {}
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for super::Messages {}
+    impl Sealed for super::Events {}
+}
+
+/// What a [`FrameCodec`] yields for each decoded event: implemented by
+/// [`Messages`] and [`Events`] only.
+pub trait Yields<F: Framing>: sealed::Sealed {
+    /// The decoder's `Item`.
+    type Item;
+
+    /// The item for `event`, or `None` to skip it.
+    #[doc(hidden)]
+    fn item(event: OwnedEvent<F>) -> Option<Self::Item>;
+}
+
+impl<F: Framing> Yields<F> for Messages {
+    type Item = Framed<F::Owned>;
+
+    fn item(event: OwnedEvent<F>) -> Option<Self::Item> {
+        event.ok()
+    }
+}
+
+impl<F: Framing> Yields<F> for Events {
+    type Item = OwnedEvent<F>;
+
+    fn item(event: OwnedEvent<F>) -> Option<Self::Item> {
+        Some(event)
+    }
+}
+
+impl<F: Framing, const N: usize> FrameCodec<F, N, Messages> {
+    /// A codec decoding with `framing`, yielding messages.
+    pub const fn new(framing: F) -> Self {
+        Self::from_decoder(StreamDecoder::new(framing))
+    }
+
+    /// A codec around an existing decoder (its state and counters carry on),
+    /// yielding messages.
+    pub const fn from_decoder(decoder: StreamDecoder<F, N>) -> Self {
+        Self {
+            decoder,
+            last_rejected: None,
+            yields: PhantomData,
+        }
+    }
+}
+
+impl<F: Framing, const N: usize, Y> FrameCodec<F, N, Y> {
+    /// The same codec, yielding every event (frames and rejections).
+    ///
+    /// ```
+    /// use robowire::io::tokio::OmniTilesCodec;
+    /// use robowire::omnitiles::Framing;
+    /// use tokio_util::codec::Decoder;
+    ///
+    /// let mut codec = OmniTilesCodec::new(Framing::commands()).events();
+    /// // A ping with a bad checksum, then a good one.
+    /// let mut bytes = bytes::BytesMut::from(&[0xa5, 0x50, 0x51, 0xa5, 0x50, 0x50][..]);
+    /// assert!(codec.decode(&mut bytes)?.unwrap().is_err());
+    /// assert!(codec.decode(&mut bytes)?.unwrap().is_ok());
+    /// assert_eq!(codec.stats().checksum_errors, 1);
+    /// # Ok::<(), std::io::Error>(())
+    /// ```
+    pub fn events(self) -> FrameCodec<F, N, Events> {
+        self.yielding()
+    }
+
+    /// The same codec, yielding messages only.
+    pub fn messages(self) -> FrameCodec<F, N, Messages> {
+        self.yielding()
+    }
+
+    fn yielding<Z>(self) -> FrameCodec<F, N, Z> {
+        FrameCodec {
+            decoder: self.decoder,
+            last_rejected: self.last_rejected,
+            yields: PhantomData,
+        }
+    }
+
+    /// The decoder's counters: frames, skipped bytes, checksum errors and
+    /// other rejections.
+    pub fn stats(&self) -> Stats {
+        self.decoder.stats()
+    }
+
+    /// The most recent rejected candidate, if any.
+    pub fn last_rejected(&self) -> Option<Rejected<F::Error>> {
+        self.last_rejected
+    }
+
+    /// The framing rules in use.
+    pub fn framing(&self) -> &F {
+        self.decoder.framing()
+    }
+
+    /// The decoder.
+    pub fn decoder(&self) -> &StreamDecoder<F, N> {
+        &self.decoder
+    }
+
+    /// The decoder, mutably.
+    pub fn decoder_mut(&mut self) -> &mut StreamDecoder<F, N> {
+        &mut self.decoder
+    }
+
+    /// The decoder, with its state and counters.
+    pub fn into_decoder(self) -> StreamDecoder<F, N> {
+        self.decoder
+    }
+}
+
+impl<F: Framing, const N: usize, Y: Yields<F>> FrameCodec<F, N, Y> {
+    fn keep(&mut self, event: OwnedEvent<F>) -> Option<Y::Item> {
+        if let Err(rejected) = event {
+            self.last_rejected = Some(rejected);
+        }
+        Y::item(event)
+    }
+}
+
+impl<F: Framing + Default, const N: usize> Default for FrameCodec<F, N, Messages> {
+    fn default() -> Self {
+        Self::new(F::default())
+    }
+}
+
+impl<F: Framing + Clone, const N: usize, Y> Clone for FrameCodec<F, N, Y> {
+    fn clone(&self) -> Self {
+        Self {
+            decoder: self.decoder.clone(),
+            last_rejected: self.last_rejected,
+            yields: PhantomData,
+        }
+    }
+}
+
+impl<F: Framing + fmt::Debug, const N: usize, Y> fmt::Debug for FrameCodec<F, N, Y> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("FrameCodec")
+            .field("decoder", &self.decoder)
+            .field("last_rejected", &self.last_rejected)
+            .finish()
+    }
+}
+
+impl<F: Framing, const N: usize, Y: Yields<F>> Decoder for FrameCodec<F, N, Y> {
+    type Item = Y::Item;
+    type Error = io::Error;
+
+    /// Decode from `src`, taking every byte it looks at: a partial frame moves
+    /// into the decoder's own buffer, so `src` never grows without bound.
+    /// Never fails.
+    fn decode(&mut self, src: &mut BytesMut) -> io::Result<Option<Y::Item>> {
+        loop {
+            let mut input: &[u8] = src;
+            let before = input.len();
+            let event = self.decoder.decode(&mut input).map(owned_event::<F>);
+            let taken = before - input.len();
+            src.advance(taken);
+            match event {
+                // Every byte has been taken.
+                None => return Ok(None),
+                Some(event) => {
+                    if let Some(item) = self.keep(event) {
+                        return Ok(Some(item));
+                    }
+                }
+            }
+        }
+    }
+
+    /// Decode what is left, then resolve the buffered candidate with
+    /// [`StreamDecoder::finish`]. Never fails: trailing garbage or a truncated
+    /// frame is a rejection.
+    fn decode_eof(&mut self, src: &mut BytesMut) -> io::Result<Option<Y::Item>> {
+        if let Some(item) = self.decode(src)? {
+            return Ok(Some(item));
+        }
+        while let Some(event) = self.decoder.finish().map(owned_event::<F>) {
+            if let Some(item) = self.keep(event) {
+                return Ok(Some(item));
+            }
+        }
+        Ok(None)
+    }
+}
+
+impl<F: Framing, const N: usize, Y, M: Encode> Encoder<M> for FrameCodec<F, N, Y> {
+    type Error = io::Error;
+
+    /// Append `message`'s frame to `dst`. An [`EncodeError`](crate::EncodeError)
+    /// becomes an [`io::ErrorKind::InvalidInput`] error and appends nothing.
+    fn encode(&mut self, message: M, dst: &mut BytesMut) -> io::Result<()> {
+        let start = dst.len();
+        dst.resize(start + message.encoded_len(), 0);
+        match message.encode(&mut dst[start..]) {
+            Ok(n) => {
+                dst.truncate(start + n);
+                Ok(())
+            }
+            Err(e) => {
+                dst.truncate(start);
+                Err(io::Error::new(io::ErrorKind::InvalidInput, e))
+            }
+        }
+    }
+}

@@ -1,0 +1,676 @@
+//! Host → device requests (spec §4.2–§4.5), one type per request and the
+//! [`Request`] enum over all of them.
+//!
+//! Fields hold the values as the device reads them. The encoder rejects only
+//! what the device would refuse with ERROR −3 (getBlocks signature map 0) or
+//! drop (a payload over 64 bytes). Values the device accepts are passed
+//! through unchanged, as documented on each field: servo positions above 1000
+//! (ignored, still RESULT 0), getRGB coordinates past the frame (clamped),
+//! mode bits it does not know (ignored), any nonzero byte for on/true.
+
+use core::fmt;
+
+use crate::encode::EncodeError;
+
+use super::error::{Error, Malformed};
+use super::packet::{packet_type as ty, Body, Form, DEVICE_MAX_PAYLOAD};
+
+/// A program name as sent by changeProg: the raw payload, at most 64 bytes.
+///
+/// The official host sends the name NUL-padded to 33 bytes
+/// ([`ProgName::new`] does the same). The device matches the bytes up to the
+/// first NUL as a *prefix* of its program names (`"line"` selects
+/// `line_tracking`, an empty name program 0) and does not check the length.
+///
+/// With the `serde` feature it serializes as its payload bytes, padding
+/// included (a byte string; an array of numbers in JSON); deserializing
+/// refuses more than 64 bytes.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ProgName {
+    bytes: [u8; DEVICE_MAX_PAYLOAD],
+    len: u8,
+}
+
+impl ProgName {
+    /// Payload length the official host uses (`PIXY_MAX_PROGNAME`).
+    pub const PADDED_LEN: usize = 33;
+    /// `color_connected_components` (blocks).
+    pub const COLOR_CONNECTED_COMPONENTS: Self = Self::padded(b"color_connected_components");
+    /// `line_tracking` (line features).
+    pub const LINE_TRACKING: Self = Self::padded(b"line_tracking");
+    /// `video` (getRGB).
+    pub const VIDEO: Self = Self::padded(b"video");
+    /// `pan_tilt_demo`.
+    pub const PAN_TILT_DEMO: Self = Self::padded(b"pan_tilt_demo");
+
+    /// `name` NUL-padded to 33 bytes, as the official host sends it. The name
+    /// must be at most 32 bytes (a NUL always follows) and contain no NUL.
+    pub const fn new(name: &str) -> Result<Self, EncodeError> {
+        let b = name.as_bytes();
+        if b.len() >= Self::PADDED_LEN {
+            return Err(EncodeError::TooLong {
+                len: b.len(),
+                max: Self::PADDED_LEN - 1,
+            });
+        }
+        let mut i = 0;
+        while i < b.len() {
+            if b[i] == 0 {
+                return Err(EncodeError::OutOfRange {
+                    field: "program name (contains NUL)",
+                });
+            }
+            i += 1;
+        }
+        Ok(Self::padded(b))
+    }
+
+    /// Copies at most 32 bytes of `name` into a 33-byte padded payload.
+    const fn padded(name: &[u8]) -> Self {
+        let mut bytes = [0u8; DEVICE_MAX_PAYLOAD];
+        let mut i = 0;
+        while i < name.len() && i < Self::PADDED_LEN - 1 {
+            bytes[i] = name[i];
+            i += 1;
+        }
+        Self {
+            bytes,
+            len: Self::PADDED_LEN as u8,
+        }
+    }
+
+    /// The payload exactly as given (any length up to 64, the device's limit).
+    pub fn from_payload(payload: &[u8]) -> Option<Self> {
+        if payload.len() > DEVICE_MAX_PAYLOAD {
+            return None;
+        }
+        let mut bytes = [0u8; DEVICE_MAX_PAYLOAD];
+        bytes[..payload.len()].copy_from_slice(payload);
+        Some(Self {
+            bytes,
+            len: payload.len() as u8,
+        })
+    }
+
+    /// The payload bytes, padding included.
+    pub fn as_payload(&self) -> &[u8] {
+        &self.bytes[..usize::from(self.len)]
+    }
+
+    /// The name: the payload up to its first NUL.
+    pub fn name(&self) -> &[u8] {
+        let p = self.as_payload();
+        let end = memchr::memchr(0, p).unwrap_or(p.len());
+        &p[..end]
+    }
+
+    /// The name as text, if it is UTF-8.
+    pub fn as_str(&self) -> Option<&str> {
+        core::str::from_utf8(self.name()).ok()
+    }
+}
+
+impl fmt::Debug for ProgName {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("ProgName")
+            .field("name", &self.name().escape_ascii())
+            .field("payload_len", &self.len)
+            .finish()
+    }
+}
+
+/// 0x02 changeProg: switch programs. Answer: RESULT 1 = already running,
+/// 0 = switch pending (poll again); ERROR −3 for an unknown name.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ChangeProg(pub ProgName);
+
+/// 0x0c getResolution. Answer: resolution (0x0d).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct GetResolution {
+    /// Reserved "type" byte; send 0. Any value is passed through.
+    pub reserved: u8,
+}
+
+/// 0x0e getVersion (also the ping: ERROR −2 until boot completes). Answer:
+/// version (0x0f).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct GetVersion;
+
+/// 0x10 setCameraBrightness. Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SetCameraBrightness(pub u8);
+
+/// 0x12 setServos. Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SetServos {
+    /// Servo 0 (pan), 0..=1000. Larger values are passed through: the device
+    /// ignores them and still answers RESULT 0.
+    pub pan: u16,
+    /// Servo 1 (tilt), 0..=1000, as `pan`.
+    pub tilt: u16,
+}
+
+impl SetServos {
+    /// Largest position the device acts on.
+    pub const MAX: u16 = 1000;
+}
+
+/// 0x14 setLED: override the RGB LED. Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SetLed {
+    /// Red.
+    pub r: u8,
+    /// Green.
+    pub g: u8,
+    /// Blue.
+    pub b: u8,
+}
+
+/// 0x16 setLamp. Nonzero = on; bytes are passed through. Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SetLamp {
+    /// The two white LEDs on the top edge.
+    pub upper: u8,
+    /// All channels of the lower RGB LED.
+    pub lower: u8,
+}
+
+impl SetLamp {
+    /// Lamps on or off, sent as 1 or 0.
+    pub const fn new(upper: bool, lower: bool) -> Self {
+        Self {
+            upper: upper as u8,
+            lower: lower as u8,
+        }
+    }
+}
+
+/// 0x18 getFPS. Answer: RESULT = frames per second.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct GetFps;
+
+/// 0x20 getBlocks (colour connected components). Answer: blocks (0x21), at
+/// most `min(max_blocks, 18)`, largest first; ERROR −2 when no new frame yet.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct GetBlocks {
+    /// Which signatures: bit k = signature k+1 ([`GetBlocks::SIG1`] …),
+    /// bit 7 = every colour code. Must not be 0 (the encoder refuses it: the
+    /// device answers ERROR −3).
+    pub sigmap: u8,
+    /// Most blocks to return; 0 gives an empty list.
+    pub max_blocks: u8,
+}
+
+impl GetBlocks {
+    /// Signature 1.
+    pub const SIG1: u8 = 0x01;
+    /// Signature 2.
+    pub const SIG2: u8 = 0x02;
+    /// Signature 3.
+    pub const SIG3: u8 = 0x04;
+    /// Signature 4.
+    pub const SIG4: u8 = 0x08;
+    /// Signature 5.
+    pub const SIG5: u8 = 0x10;
+    /// Signature 6.
+    pub const SIG6: u8 = 0x20;
+    /// Signature 7.
+    pub const SIG7: u8 = 0x40;
+    /// Every colour code (signature > 7).
+    pub const COLOR_CODES: u8 = 0x80;
+    /// Everything.
+    pub const ALL: u8 = 0xff;
+
+    /// Whether a block with `signature` can answer this request.
+    pub const fn wants(&self, signature: u16) -> bool {
+        match signature {
+            0 => false,
+            1..=7 => self.sigmap & (1 << (signature - 1)) != 0,
+            _ => self.sigmap & Self::COLOR_CODES != 0,
+        }
+    }
+}
+
+/// 0x30 getFeatures (line tracking). Answer: line features (0x31); ERROR −2
+/// when no new frame yet.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct GetFeatures {
+    /// 0 = main features ([`GetFeatures::MAIN`]); any nonzero value = all
+    /// features (the official host sends [`GetFeatures::ALL`] = 1).
+    pub scope: u8,
+    /// Which feature types: [`GetFeatures::VECTORS`] | …
+    pub features: u8,
+}
+
+impl GetFeatures {
+    /// `scope`: the main features only.
+    pub const MAIN: u8 = 0;
+    /// `scope`: every tracked feature.
+    pub const ALL: u8 = 1;
+    /// `features`: vectors.
+    pub const VECTORS: u8 = 0x01;
+    /// `features`: intersections.
+    pub const INTERSECTIONS: u8 = 0x02;
+    /// `features`: barcodes.
+    pub const BARCODES: u8 = 0x04;
+    /// `features`: all three.
+    pub const ALL_FEATURES: u8 = 0x07;
+}
+
+/// 0x36 setMode: a bitmap of line-tracking modes. Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SetMode(pub u8);
+
+impl SetMode {
+    /// Turn at an intersection only after setNextTurn.
+    pub const TURN_DELAYED: u8 = 0x01;
+    /// The host picks the primary vector with setVector.
+    pub const MANUAL_SELECT_VECTOR: u8 = 0x02;
+    /// Track a white line on a dark background.
+    pub const WHITE_LINE: u8 = 0x80;
+}
+
+/// 0x38 setVector: choose the primary vector by tracking index. Answer:
+/// RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SetVector(pub u8);
+
+/// 0x3a setNextTurn: degrees at the next intersection (0 = straight up the
+/// image, +90 = left, −90 = right). Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SetNextTurn(pub i16);
+
+/// 0x3c setDefaultTurn: degrees when no next turn is set, as
+/// [`SetNextTurn`]. Answer: RESULT 0.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SetDefaultTurn(pub i16);
+
+/// 0x3e reverseVector. Answer: RESULT 0, or ERROR −1 with no primary vector.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct ReverseVector;
+
+/// 0x70 getRGB: the colour at a pixel. Answer: RESULT `0x00RRGGBB`.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct GetRgb {
+    /// Column, 0..=315 (the device clamps larger values).
+    pub x: u16,
+    /// Row, 0..=207 (the device clamps larger values).
+    pub y: u16,
+    /// 1 = saturate the colour, 0 = raw; passed through.
+    pub saturate: u8,
+}
+
+impl GetRgb {
+    /// The pixel at (`x`, `y`), saturated or not.
+    pub const fn new(x: u16, y: u16, saturate: bool) -> Self {
+        Self {
+            x,
+            y,
+            saturate: saturate as u8,
+        }
+    }
+}
+
+/// Any host → device request.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Request {
+    /// 0x02 changeProg.
+    ChangeProg(ChangeProg),
+    /// 0x0c getResolution.
+    GetResolution(GetResolution),
+    /// 0x0e getVersion.
+    GetVersion(GetVersion),
+    /// 0x10 setCameraBrightness.
+    SetCameraBrightness(SetCameraBrightness),
+    /// 0x12 setServos.
+    SetServos(SetServos),
+    /// 0x14 setLED.
+    SetLed(SetLed),
+    /// 0x16 setLamp.
+    SetLamp(SetLamp),
+    /// 0x18 getFPS.
+    GetFps(GetFps),
+    /// 0x20 getBlocks.
+    GetBlocks(GetBlocks),
+    /// 0x30 getFeatures.
+    GetFeatures(GetFeatures),
+    /// 0x36 setMode.
+    SetMode(SetMode),
+    /// 0x38 setVector.
+    SetVector(SetVector),
+    /// 0x3a setNextTurn.
+    SetNextTurn(SetNextTurn),
+    /// 0x3c setDefaultTurn.
+    SetDefaultTurn(SetDefaultTurn),
+    /// 0x3e reverseVector.
+    ReverseVector(ReverseVector),
+    /// 0x70 getRGB.
+    GetRgb(GetRgb),
+}
+
+macro_rules! from_request_types {
+    ($($name:ident),*) => {$(
+        impl From<$name> for Request {
+            fn from(r: $name) -> Self {
+                Self::$name(r)
+            }
+        }
+    )*};
+}
+
+from_request_types!(
+    ChangeProg,
+    GetResolution,
+    GetVersion,
+    SetCameraBrightness,
+    SetServos,
+    SetLed,
+    SetLamp,
+    GetFps,
+    GetBlocks,
+    GetFeatures,
+    SetMode,
+    SetVector,
+    SetNextTurn,
+    SetDefaultTurn,
+    ReverseVector,
+    GetRgb
+);
+
+/// The payload length a request type must have: `Some(None)` = any length up
+/// to the device limit, `None` = not a request type.
+pub(crate) const fn request_len(packet_type: u8) -> Option<Option<u8>> {
+    Some(Some(match packet_type {
+        ty::CHANGE_PROG => return Some(None),
+        ty::GET_RESOLUTION => 1,
+        ty::GET_VERSION => 0,
+        ty::SET_CAMERA_BRIGHTNESS => 1,
+        ty::SET_SERVOS => 4,
+        ty::SET_LED => 3,
+        ty::SET_LAMP => 2,
+        ty::GET_FPS => 0,
+        ty::GET_BLOCKS => 2,
+        ty::GET_FEATURES => 2,
+        ty::SET_MODE => 1,
+        ty::SET_VECTOR => 1,
+        ty::SET_NEXT_TURN => 2,
+        ty::SET_DEFAULT_TURN => 2,
+        ty::REVERSE_VECTOR => 0,
+        ty::GET_RGB => 5,
+        _ => return None,
+    }))
+}
+
+/// Header check for a request: a known type with a length the device takes.
+/// The device drops payloads over 64 before it looks at the type, so that is
+/// checked first.
+pub(crate) fn check_request_header(packet_type: u8, len: u8) -> Result<(), Error> {
+    let Some(exact) = request_len(packet_type) else {
+        return Err(Error::UnknownType { packet_type });
+    };
+    if usize::from(len) > DEVICE_MAX_PAYLOAD {
+        return Err(Error::TooLong {
+            packet_type,
+            len,
+            max: DEVICE_MAX_PAYLOAD as u8,
+        });
+    }
+    match exact {
+        Some(n) if n != len => Err(Error::BadLength { packet_type, len }),
+        _ => Ok(()),
+    }
+}
+
+fn u16_at(p: &[u8], i: usize) -> u16 {
+    match p.get(i..i + 2) {
+        Some(&[a, b]) => u16::from_le_bytes([a, b]),
+        _ => 0,
+    }
+}
+
+fn u8_at(p: &[u8], i: usize) -> u8 {
+    p.get(i).copied().unwrap_or(0)
+}
+
+impl Request {
+    /// The packet type byte.
+    pub const fn packet_type(&self) -> u8 {
+        match self {
+            Self::ChangeProg(_) => ty::CHANGE_PROG,
+            Self::GetResolution(_) => ty::GET_RESOLUTION,
+            Self::GetVersion(_) => ty::GET_VERSION,
+            Self::SetCameraBrightness(_) => ty::SET_CAMERA_BRIGHTNESS,
+            Self::SetServos(_) => ty::SET_SERVOS,
+            Self::SetLed(_) => ty::SET_LED,
+            Self::SetLamp(_) => ty::SET_LAMP,
+            Self::GetFps(_) => ty::GET_FPS,
+            Self::GetBlocks(_) => ty::GET_BLOCKS,
+            Self::GetFeatures(_) => ty::GET_FEATURES,
+            Self::SetMode(_) => ty::SET_MODE,
+            Self::SetVector(_) => ty::SET_VECTOR,
+            Self::SetNextTurn(_) => ty::SET_NEXT_TURN,
+            Self::SetDefaultTurn(_) => ty::SET_DEFAULT_TURN,
+            Self::ReverseVector(_) => ty::REVERSE_VECTOR,
+            Self::GetRgb(_) => ty::GET_RGB,
+        }
+    }
+
+    /// The type of the successful answer: 0x0d, 0x0f, 0x21 or 0x31 for the
+    /// four typed responses, RESULT (0x01) for everything else. ERROR (0x03)
+    /// can answer any request.
+    pub const fn response_type(&self) -> u8 {
+        match self {
+            Self::GetResolution(_) => ty::RESOLUTION,
+            Self::GetVersion(_) => ty::VERSION,
+            Self::GetBlocks(_) => ty::BLOCKS,
+            Self::GetFeatures(_) => ty::FEATURES,
+            _ => ty::RESULT,
+        }
+    }
+
+    /// The payload length.
+    pub fn payload_len(&self) -> usize {
+        match self {
+            Self::ChangeProg(c) => c.0.as_payload().len(),
+            Self::GetVersion(_) | Self::GetFps(_) | Self::ReverseVector(_) => 0,
+            Self::GetResolution(_) | Self::SetCameraBrightness(_) => 1,
+            Self::SetMode(_) | Self::SetVector(_) => 1,
+            Self::SetLamp(_) | Self::GetBlocks(_) | Self::GetFeatures(_) => 2,
+            Self::SetNextTurn(_) | Self::SetDefaultTurn(_) => 2,
+            Self::SetLed(_) => 3,
+            Self::SetServos(_) => 4,
+            Self::GetRgb(_) => 5,
+        }
+    }
+
+    /// Parse a request from its type and payload, as the device reads it.
+    ///
+    /// Errors: an unknown type, a length the type cannot have, a payload over
+    /// the device's 64-byte limit, getBlocks with signature map 0.
+    pub fn parse(packet_type: u8, payload: &[u8]) -> Result<Self, Error> {
+        let len = u8::try_from(payload.len()).map_err(|_| Error::TooLong {
+            packet_type,
+            len: u8::MAX,
+            max: DEVICE_MAX_PAYLOAD as u8,
+        })?;
+        check_request_header(packet_type, len)?;
+        let p = payload;
+        Ok(match packet_type {
+            ty::CHANGE_PROG => match ProgName::from_payload(p) {
+                Some(name) => Self::ChangeProg(ChangeProg(name)),
+                None => return Err(Error::BadLength { packet_type, len }),
+            },
+            ty::GET_RESOLUTION => Self::GetResolution(GetResolution {
+                reserved: u8_at(p, 0),
+            }),
+            ty::GET_VERSION => Self::GetVersion(GetVersion),
+            ty::SET_CAMERA_BRIGHTNESS => {
+                Self::SetCameraBrightness(SetCameraBrightness(u8_at(p, 0)))
+            }
+            ty::SET_SERVOS => Self::SetServos(SetServos {
+                pan: u16_at(p, 0),
+                tilt: u16_at(p, 2),
+            }),
+            ty::SET_LED => Self::SetLed(SetLed {
+                r: u8_at(p, 0),
+                g: u8_at(p, 1),
+                b: u8_at(p, 2),
+            }),
+            ty::SET_LAMP => Self::SetLamp(SetLamp {
+                upper: u8_at(p, 0),
+                lower: u8_at(p, 1),
+            }),
+            ty::GET_FPS => Self::GetFps(GetFps),
+            ty::GET_BLOCKS => {
+                let sigmap = u8_at(p, 0);
+                if sigmap == 0 {
+                    return Err(Error::Malformed {
+                        packet_type,
+                        what: Malformed::ZeroSigmap,
+                    });
+                }
+                Self::GetBlocks(GetBlocks {
+                    sigmap,
+                    max_blocks: u8_at(p, 1),
+                })
+            }
+            ty::GET_FEATURES => Self::GetFeatures(GetFeatures {
+                scope: u8_at(p, 0),
+                features: u8_at(p, 1),
+            }),
+            ty::SET_MODE => Self::SetMode(SetMode(u8_at(p, 0))),
+            ty::SET_VECTOR => Self::SetVector(SetVector(u8_at(p, 0))),
+            ty::SET_NEXT_TURN => Self::SetNextTurn(SetNextTurn(u16_at(p, 0) as i16)),
+            ty::SET_DEFAULT_TURN => Self::SetDefaultTurn(SetDefaultTurn(u16_at(p, 0) as i16)),
+            ty::REVERSE_VECTOR => Self::ReverseVector(ReverseVector),
+            ty::GET_RGB => Self::GetRgb(GetRgb {
+                x: u16_at(p, 0),
+                y: u16_at(p, 2),
+                saturate: u8_at(p, 4),
+            }),
+            _ => return Err(Error::UnknownType { packet_type }),
+        })
+    }
+}
+
+impl Body for Request {
+    fn packet_type(&self) -> u8 {
+        Request::packet_type(self)
+    }
+
+    fn payload_len(&self) -> usize {
+        Request::payload_len(self)
+    }
+
+    fn write_payload(&self, out: &mut [u8]) -> Result<(), EncodeError> {
+        let mut put = |bytes: &[u8]| {
+            out.get_mut(..bytes.len())
+                .map(|o| o.copy_from_slice(bytes))
+                .ok_or(EncodeError::BufferTooSmall {
+                    needed: bytes.len(),
+                    available: 0,
+                })
+        };
+        match *self {
+            Self::ChangeProg(ChangeProg(ref name)) => put(name.as_payload()),
+            Self::GetVersion(_) | Self::GetFps(_) | Self::ReverseVector(_) => Ok(()),
+            Self::GetResolution(GetResolution { reserved }) => put(&[reserved]),
+            Self::SetCameraBrightness(SetCameraBrightness(v)) => put(&[v]),
+            Self::SetServos(SetServos { pan, tilt }) => {
+                let [a, b] = pan.to_le_bytes();
+                let [c, d] = tilt.to_le_bytes();
+                put(&[a, b, c, d])
+            }
+            Self::SetLed(SetLed { r, g, b }) => put(&[r, g, b]),
+            Self::SetLamp(SetLamp { upper, lower }) => put(&[upper, lower]),
+            Self::GetBlocks(GetBlocks { sigmap, max_blocks }) => {
+                if sigmap == 0 {
+                    return Err(EncodeError::OutOfRange {
+                        field: "getBlocks sigmap (0 is refused by the device)",
+                    });
+                }
+                put(&[sigmap, max_blocks])
+            }
+            Self::GetFeatures(GetFeatures { scope, features }) => put(&[scope, features]),
+            Self::SetMode(SetMode(v)) | Self::SetVector(SetVector(v)) => put(&[v]),
+            Self::SetNextTurn(SetNextTurn(a)) | Self::SetDefaultTurn(SetDefaultTurn(a)) => {
+                put(&a.to_le_bytes())
+            }
+            Self::GetRgb(GetRgb { x, y, saturate }) => {
+                let [a, b] = x.to_le_bytes();
+                let [c, d] = y.to_le_bytes();
+                put(&[a, b, c, d, saturate])
+            }
+        }
+    }
+
+    fn default_form(&self) -> Form {
+        Form::NoChecksum
+    }
+}
+
+#[cfg(feature = "serde")]
+impl serde::Serialize for ProgName {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        crate::serde_support::serialize_bytes(self.as_payload(), serializer)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for ProgName {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let mut bytes = [0u8; DEVICE_MAX_PAYLOAD];
+        let len =
+            crate::serde_support::bytes_into(deserializer, &mut bytes, "a Pixy2 program name")?;
+        Ok(Self {
+            bytes,
+            len: len as u8,
+        })
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl defmt::Format for ProgName {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(
+            f,
+            "ProgName {{ name: {=[u8]:a}, payload_len: {=u8} }}",
+            self.name(),
+            self.len
+        )
+    }
+}

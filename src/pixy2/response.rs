@@ -1,0 +1,378 @@
+//! Device → host responses (spec §4.1–§4.5): the borrowed [`Response`] (blocks
+//! and line features are zero-copy views) and its owned form
+//! [`ResponseBuf`].
+
+use core::fmt;
+
+use crate::encode::EncodeError;
+
+use super::blocks::{Blocks, BlocksBuf};
+use super::error::{DeviceError, Error, Malformed};
+use super::features::{Features, FeaturesBuf};
+use super::packet::{packet_type as ty, Body, Form};
+
+/// The firmware type field of a version response: 10 bytes, NUL-padded, not
+/// NUL-terminated when all 10 are used. All 10 bytes are kept as received.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct FirmwareType(pub [u8; 10]);
+
+impl FirmwareType {
+    /// `general`, the serial firmware.
+    pub const GENERAL: Self = Self(*b"general\0\0\0");
+    /// `LEGO`, the LEGO firmware (its protocol is out of scope).
+    pub const LEGO: Self = Self(*b"LEGO\0\0\0\0\0\0");
+
+    /// `name` NUL-padded; at most 10 bytes.
+    pub fn new(name: &str) -> Result<Self, EncodeError> {
+        let b = name.as_bytes();
+        let mut out = [0u8; 10];
+        out.get_mut(..b.len())
+            .ok_or(EncodeError::TooLong {
+                len: b.len(),
+                max: 10,
+            })?
+            .copy_from_slice(b);
+        Ok(Self(out))
+    }
+
+    /// The name: bytes up to the first NUL, or all 10.
+    pub fn as_bytes(&self) -> &[u8] {
+        let end = memchr::memchr(0, &self.0).unwrap_or(self.0.len());
+        &self.0[..end]
+    }
+
+    /// The name as text, if it is UTF-8.
+    pub fn as_str(&self) -> Option<&str> {
+        core::str::from_utf8(self.as_bytes()).ok()
+    }
+}
+
+impl fmt::Debug for FirmwareType {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "FirmwareType(\"{}\")", self.as_bytes().escape_ascii())
+    }
+}
+
+/// The version response (0x0f, 16 bytes).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Version {
+    /// Hardware version (e.g. 0x2200).
+    pub hardware: u16,
+    /// Firmware major version.
+    pub firmware_major: u8,
+    /// Firmware minor version.
+    pub firmware_minor: u8,
+    /// Firmware build number.
+    pub firmware_build: u16,
+    /// Firmware type (`general`, `LEGO`).
+    pub firmware_type: FirmwareType,
+}
+
+impl Version {
+    /// Payload length.
+    pub const SIZE: usize = 16;
+
+    fn from_bytes(b: &[u8; Self::SIZE]) -> Self {
+        let mut name = [0u8; 10];
+        name.copy_from_slice(&b[6..]);
+        Self {
+            hardware: u16::from_le_bytes([b[0], b[1]]),
+            firmware_major: b[2],
+            firmware_minor: b[3],
+            firmware_build: u16::from_le_bytes([b[4], b[5]]),
+            firmware_type: FirmwareType(name),
+        }
+    }
+
+    fn to_bytes(self) -> [u8; Self::SIZE] {
+        let mut b = [0u8; Self::SIZE];
+        b[..2].copy_from_slice(&self.hardware.to_le_bytes());
+        b[2] = self.firmware_major;
+        b[3] = self.firmware_minor;
+        b[4..6].copy_from_slice(&self.firmware_build.to_le_bytes());
+        b[6..].copy_from_slice(&self.firmware_type.0);
+        b
+    }
+}
+
+/// The resolution response (0x0d): 316 × 208 for blocks and video, 79 × 52
+/// (the line grid) in line tracking.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Resolution {
+    /// Frame width.
+    pub width: u16,
+    /// Frame height.
+    pub height: u16,
+}
+
+/// A colour, as getRGB answers it: RESULT `0x00RRGGBB` (wire bytes B, G, R, 0).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Rgb {
+    /// Red.
+    pub r: u8,
+    /// Green.
+    pub g: u8,
+    /// Blue.
+    pub b: u8,
+}
+
+impl Rgb {
+    /// The colour in a RESULT value, if its top byte is 0.
+    pub const fn from_result(value: i32) -> Option<Self> {
+        let [b, g, r, top] = value.to_le_bytes();
+        if top == 0 {
+            Some(Self { r, g, b })
+        } else {
+            None
+        }
+    }
+
+    /// The RESULT value `0x00RRGGBB`.
+    pub const fn to_result(self) -> i32 {
+        i32::from_le_bytes([self.b, self.g, self.r, 0])
+    }
+}
+
+/// Any device → host response, borrowing blocks and line features from the
+/// frame.
+///
+/// With the `serde` feature it serializes exactly as [`ResponseBuf`] does, and
+/// only [`ResponseBuf`] deserializes ([`Blocks`] has nothing to borrow from a
+/// serialized form).
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Response<'a> {
+    /// 0x01: the generic result, a full i32 (frames per second, getRGB's
+    /// colour, changeProg's status, 0 for the setters).
+    Result(i32),
+    /// 0x03: the device refused or failed the request.
+    Error(DeviceError),
+    /// 0x0d: getResolution's answer.
+    Resolution(Resolution),
+    /// 0x0f: getVersion's answer.
+    Version(Version),
+    /// 0x21: getBlocks's answer.
+    Blocks(Blocks<'a>),
+    /// 0x31: getFeatures's answer.
+    Features(Features<'a>),
+}
+
+/// The owned form of [`Response`], with fixed-capacity blocks and features.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ResponseBuf {
+    /// As [`Response::Result`].
+    Result(i32),
+    /// As [`Response::Error`].
+    Error(DeviceError),
+    /// As [`Response::Resolution`].
+    Resolution(Resolution),
+    /// As [`Response::Version`].
+    Version(Version),
+    /// As [`Response::Blocks`], owned.
+    Blocks(BlocksBuf),
+    /// As [`Response::Features`], owned.
+    Features(FeaturesBuf),
+}
+
+/// Header check for a response: a known type with a length it can have
+/// (spec §7.4 item 4). Line features can have any length; their sections are
+/// checked once the payload is there.
+pub(crate) fn check_response_header(packet_type: u8, len: u8) -> Result<(), Error> {
+    let ok = match packet_type {
+        ty::RESULT | ty::RESOLUTION => len == 4,
+        ty::ERROR => len == 1,
+        ty::VERSION => usize::from(len) == Version::SIZE,
+        ty::BLOCKS => Blocks::new(&[0u8; 255][..usize::from(len)]).is_some(),
+        ty::FEATURES => true,
+        _ => return Err(Error::UnknownType { packet_type }),
+    };
+    if ok {
+        Ok(())
+    } else {
+        Err(Error::BadLength { packet_type, len })
+    }
+}
+
+/// Whether `packet_type` is a response type.
+pub(crate) const fn is_response_type(packet_type: u8) -> bool {
+    matches!(
+        packet_type,
+        ty::RESULT | ty::ERROR | ty::RESOLUTION | ty::VERSION | ty::BLOCKS | ty::FEATURES
+    )
+}
+
+impl<'a> Response<'a> {
+    /// A getRGB answer: RESULT `0x00RRGGBB`.
+    pub const fn rgb(color: Rgb) -> Self {
+        Self::Result(color.to_result())
+    }
+
+    /// The packet type byte.
+    pub const fn packet_type(&self) -> u8 {
+        match self {
+            Self::Result(_) => ty::RESULT,
+            Self::Error(_) => ty::ERROR,
+            Self::Resolution(_) => ty::RESOLUTION,
+            Self::Version(_) => ty::VERSION,
+            Self::Blocks(_) => ty::BLOCKS,
+            Self::Features(_) => ty::FEATURES,
+        }
+    }
+
+    /// The payload length.
+    pub const fn payload_len(&self) -> usize {
+        match self {
+            Self::Result(_) | Self::Resolution(_) => 4,
+            Self::Error(_) => 1,
+            Self::Version(_) => Version::SIZE,
+            Self::Blocks(b) => b.as_bytes().len(),
+            Self::Features(f) => f.as_bytes().len(),
+        }
+    }
+
+    /// Parse a response from its type and payload (blocks and features are
+    /// borrowed from `payload`).
+    pub fn parse(packet_type: u8, payload: &'a [u8]) -> Result<Self, Error> {
+        let len = u8::try_from(payload.len()).map_err(|_| Error::BadLength {
+            packet_type,
+            len: u8::MAX,
+        })?;
+        check_response_header(packet_type, len)?;
+        let bad_length = Error::BadLength { packet_type, len };
+        Ok(match packet_type {
+            ty::RESULT => Self::Result(i32::from_le_bytes(
+                payload.try_into().map_err(|_| bad_length)?,
+            )),
+            ty::ERROR => match *payload {
+                [code] => Self::Error(DeviceError::from_code(code as i8)),
+                _ => return Err(bad_length),
+            },
+            ty::RESOLUTION => match *payload {
+                [w0, w1, h0, h1] => Self::Resolution(Resolution {
+                    width: u16::from_le_bytes([w0, w1]),
+                    height: u16::from_le_bytes([h0, h1]),
+                }),
+                _ => return Err(bad_length),
+            },
+            ty::VERSION => Self::Version(Version::from_bytes(
+                payload.try_into().map_err(|_| bad_length)?,
+            )),
+            ty::BLOCKS => Self::Blocks(Blocks::new(payload).ok_or(Error::Malformed {
+                packet_type,
+                what: Malformed::BlocksLength { len: payload.len() },
+            })?),
+            ty::FEATURES => Self::Features(
+                Features::new(payload).map_err(|what| Error::Malformed { packet_type, what })?,
+            ),
+            _ => return Err(Error::UnknownType { packet_type }),
+        })
+    }
+
+    /// The owned form.
+    pub fn to_owned(&self) -> ResponseBuf {
+        match *self {
+            Self::Result(v) => ResponseBuf::Result(v),
+            Self::Error(e) => ResponseBuf::Error(e),
+            Self::Resolution(r) => ResponseBuf::Resolution(r),
+            Self::Version(v) => ResponseBuf::Version(v),
+            Self::Blocks(b) => ResponseBuf::Blocks(b.to_owned()),
+            Self::Features(f) => ResponseBuf::Features(f.to_owned()),
+        }
+    }
+}
+
+impl ResponseBuf {
+    /// The borrowed form.
+    pub fn as_response(&self) -> Response<'_> {
+        match self {
+            Self::Result(v) => Response::Result(*v),
+            Self::Error(e) => Response::Error(*e),
+            Self::Resolution(r) => Response::Resolution(*r),
+            Self::Version(v) => Response::Version(*v),
+            Self::Blocks(b) => Response::Blocks(b.view()),
+            Self::Features(f) => Response::Features(f.view()),
+        }
+    }
+}
+
+impl<'a> From<&'a ResponseBuf> for Response<'a> {
+    fn from(r: &'a ResponseBuf) -> Self {
+        r.as_response()
+    }
+}
+
+impl Body for Response<'_> {
+    fn packet_type(&self) -> u8 {
+        Response::packet_type(self)
+    }
+
+    fn payload_len(&self) -> usize {
+        Response::payload_len(self)
+    }
+
+    fn write_payload(&self, out: &mut [u8]) -> Result<(), EncodeError> {
+        let mut scratch = [0u8; Version::SIZE];
+        let src: &[u8] = match self {
+            Self::Result(v) => {
+                scratch[..4].copy_from_slice(&v.to_le_bytes());
+                &scratch[..4]
+            }
+            Self::Error(e) => {
+                scratch[0] = e.code() as u8;
+                &scratch[..1]
+            }
+            Self::Resolution(r) => {
+                scratch[..2].copy_from_slice(&r.width.to_le_bytes());
+                scratch[2..4].copy_from_slice(&r.height.to_le_bytes());
+                &scratch[..4]
+            }
+            Self::Version(v) => {
+                scratch = v.to_bytes();
+                &scratch
+            }
+            Self::Blocks(b) => b.as_bytes(),
+            Self::Features(f) => f.as_bytes(),
+        };
+        let available = out.len();
+        out.get_mut(..src.len())
+            .ok_or(EncodeError::BufferTooSmall {
+                needed: src.len(),
+                available,
+            })?
+            .copy_from_slice(src);
+        Ok(())
+    }
+
+    fn default_form(&self) -> Form {
+        Form::Checksum
+    }
+}
+
+impl Body for ResponseBuf {
+    fn packet_type(&self) -> u8 {
+        self.as_response().packet_type()
+    }
+
+    fn payload_len(&self) -> usize {
+        self.as_response().payload_len()
+    }
+
+    fn write_payload(&self, out: &mut [u8]) -> Result<(), EncodeError> {
+        self.as_response().write_payload(out)
+    }
+
+    fn default_form(&self) -> Form {
+        Form::Checksum
+    }
+}

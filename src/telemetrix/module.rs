@@ -1,0 +1,1113 @@
+//! Modules: MODULE_NEW / MODULE_DATA (commands 33/34) and reports 33/34
+//! (spec §7).
+//!
+//! MODULE_DATA does not say which kind of module it is for (the firmware
+//! routes it by creation order), so a parsed [`Command::ModuleData`] carries
+//! raw bytes; build them with [`Command::module_data`] and read them with the
+//! module's `parse` ([`ModuleCommand`]). Reports (34) do carry the module type
+//! and are decoded to [`ModuleReport`].
+
+use super::command::{command_id, Command, OwnedCommand, COMMAND_PAYLOAD_MAX};
+use super::error::{ensure, Error};
+use super::list::{List, Payload};
+use super::wire::{Reader, Writer};
+use crate::EncodeError;
+
+/// Most bytes of a MODULE_NEW init (LEN 30 less `id, 01, num, type`).
+pub const MODULE_INIT_MAX: usize = 26;
+
+/// Module types (spec §7).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ModuleType {
+    /// 0: PCA9685 PWM expander.
+    Pca9685,
+    /// 1: Hiwonder serial bus servos.
+    HiwonderServo,
+    /// 2: shutdown relay.
+    ShutdownRelay,
+    /// 3: SSD1306 OLED display.
+    Ssd1306,
+}
+
+impl ModuleType {
+    /// The type for a wire value.
+    pub const fn from_u8(value: u8) -> Option<Self> {
+        match value {
+            0 => Some(ModuleType::Pca9685),
+            1 => Some(ModuleType::HiwonderServo),
+            2 => Some(ModuleType::ShutdownRelay),
+            3 => Some(ModuleType::Ssd1306),
+            _ => None,
+        }
+    }
+
+    /// The wire value.
+    pub const fn as_u8(self) -> u8 {
+        self as u8
+    }
+}
+
+/// PCA9685 address and frequency (applied only when both are sent).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Pca9685Config {
+    /// 7-bit address (default 0x40).
+    pub addr: u8,
+    /// PWM frequency in Hz (default 50).
+    pub freq_hz: u16,
+}
+
+/// A module's MODULE_NEW init bytes, by type.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ModuleInit<B> {
+    /// `port [, addr, u16 freq_hz]`.
+    Pca9685 {
+        /// I2C port 0 or 1.
+        port: u8,
+        /// Address and frequency, or the defaults.
+        config: Option<Pca9685Config>,
+    },
+    /// `uart, rx, tx, count, count × bus_id`.
+    HiwonderServo {
+        /// UART 0 or 1.
+        uart: u8,
+        /// RX GPIO (< 30).
+        rx: u8,
+        /// TX GPIO (< 30).
+        tx: u8,
+        /// Bus ids of the servos, at most 22; later messages use their index.
+        bus_ids: B,
+    },
+    /// `pin, active_level, wait_s`.
+    ShutdownRelay {
+        /// Relay GPIO (< 30).
+        pin: u8,
+        /// Level that drives the relay.
+        active_high: bool,
+        /// Countdown in s.
+        wait_s: u8,
+    },
+    /// `port [, addr]`.
+    Ssd1306 {
+        /// I2C port 0 or 1.
+        port: u8,
+        /// 7-bit address (default 0x3C).
+        addr: Option<u8>,
+    },
+}
+
+/// MODULE_NEW (command 33).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ModuleNew<B> {
+    /// `00, type`: ask whether a type is supported (answered by report 33).
+    Check {
+        /// Any type value; unknown ones are answered "not supported".
+        module_type: u8,
+    },
+    /// `01, num, type, init`: add a module (no reply).
+    Add {
+        /// Module number: number modules 0, 1, 2, … in creation order.
+        module_num: u8,
+        /// Type and init bytes.
+        init: ModuleInit<B>,
+    },
+}
+
+impl<B> ModuleNew<B> {
+    pub(crate) fn map_bytes<C>(self, f: impl FnOnce(B) -> C) -> ModuleNew<C> {
+        match self {
+            ModuleNew::Check { module_type } => ModuleNew::Check { module_type },
+            ModuleNew::Add { module_num, init } => ModuleNew::Add {
+                module_num,
+                init: match init {
+                    ModuleInit::Pca9685 { port, config } => ModuleInit::Pca9685 { port, config },
+                    ModuleInit::HiwonderServo {
+                        uart,
+                        rx,
+                        tx,
+                        bus_ids,
+                    } => ModuleInit::HiwonderServo {
+                        uart,
+                        rx,
+                        tx,
+                        bus_ids: f(bus_ids),
+                    },
+                    ModuleInit::ShutdownRelay {
+                        pin,
+                        active_high,
+                        wait_s,
+                    } => ModuleInit::ShutdownRelay {
+                        pin,
+                        active_high,
+                        wait_s,
+                    },
+                    ModuleInit::Ssd1306 { port, addr } => ModuleInit::Ssd1306 { port, addr },
+                },
+            },
+        }
+    }
+}
+
+impl<B: AsRef<[u8]>> ModuleNew<B> {
+    pub(crate) fn as_ref(&self) -> ModuleNew<&[u8]> {
+        match self {
+            ModuleNew::Check { module_type } => ModuleNew::Check {
+                module_type: *module_type,
+            },
+            ModuleNew::Add { module_num, init } => ModuleNew::Add {
+                module_num: *module_num,
+                init: match init {
+                    ModuleInit::Pca9685 { port, config } => ModuleInit::Pca9685 {
+                        port: *port,
+                        config: *config,
+                    },
+                    ModuleInit::HiwonderServo {
+                        uart,
+                        rx,
+                        tx,
+                        bus_ids,
+                    } => ModuleInit::HiwonderServo {
+                        uart: *uart,
+                        rx: *rx,
+                        tx: *tx,
+                        bus_ids: bus_ids.as_ref(),
+                    },
+                    ModuleInit::ShutdownRelay {
+                        pin,
+                        active_high,
+                        wait_s,
+                    } => ModuleInit::ShutdownRelay {
+                        pin: *pin,
+                        active_high: *active_high,
+                        wait_s: *wait_s,
+                    },
+                    ModuleInit::Ssd1306 { port, addr } => ModuleInit::Ssd1306 {
+                        port: *port,
+                        addr: *addr,
+                    },
+                },
+            },
+        }
+    }
+
+    /// Length of the init bytes (0 for a check).
+    pub(crate) fn init_len(&self) -> usize {
+        match self {
+            ModuleNew::Check { .. } => 0,
+            ModuleNew::Add { init, .. } => match init {
+                ModuleInit::Pca9685 { config, .. } => 1 + 3 * usize::from(config.is_some()),
+                ModuleInit::HiwonderServo { bus_ids, .. } => 4 + bus_ids.as_ref().len(),
+                ModuleInit::ShutdownRelay { .. } => 3,
+                ModuleInit::Ssd1306 { addr, .. } => 1 + usize::from(addr.is_some()),
+            },
+        }
+    }
+
+    pub(crate) fn write(&self, w: &mut Writer<'_>) {
+        match self {
+            ModuleNew::Check { module_type } => w.bytes(&[0, *module_type]),
+            ModuleNew::Add { module_num, init } => {
+                let module_type = match init {
+                    ModuleInit::Pca9685 { .. } => ModuleType::Pca9685,
+                    ModuleInit::HiwonderServo { .. } => ModuleType::HiwonderServo,
+                    ModuleInit::ShutdownRelay { .. } => ModuleType::ShutdownRelay,
+                    ModuleInit::Ssd1306 { .. } => ModuleType::Ssd1306,
+                };
+                w.bytes(&[1, *module_num, module_type.as_u8()]);
+                match init {
+                    ModuleInit::Pca9685 { port, config } => {
+                        w.u8(*port);
+                        if let Some(c) = config {
+                            w.u8(c.addr);
+                            w.u16(c.freq_hz);
+                        }
+                    }
+                    ModuleInit::HiwonderServo {
+                        uart,
+                        rx,
+                        tx,
+                        bus_ids,
+                    } => {
+                        let ids = bus_ids.as_ref();
+                        w.bytes(&[*uart, *rx, *tx, ids.len() as u8]);
+                        w.bytes(ids);
+                    }
+                    ModuleInit::ShutdownRelay {
+                        pin,
+                        active_high,
+                        wait_s,
+                    } => {
+                        w.u8(*pin);
+                        w.flag(*active_high);
+                        w.u8(*wait_s);
+                    }
+                    ModuleInit::Ssd1306 { port, addr } => {
+                        w.u8(*port);
+                        if let Some(a) = addr {
+                            w.u8(*a);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl<'a> ModuleNew<&'a [u8]> {
+    pub(crate) fn parse(r: &mut Reader<'a>) -> Result<Self, Error> {
+        let id = r.id();
+        match r.u8()? {
+            0 => Ok(ModuleNew::Check {
+                module_type: r.u8()?,
+            }),
+            1 => {
+                let module_num = r.u8()?;
+                let module_type = ModuleType::from_u8(r.u8()?).ok_or(Error::OutOfRange {
+                    id,
+                    field: "module_type",
+                })?;
+                let init = match module_type {
+                    ModuleType::Pca9685 => {
+                        let port = port(r)?;
+                        let config = if r.remaining() > 0 {
+                            let addr = r.u8()?;
+                            ensure(addr <= 0x7f, id, "addr")?;
+                            Some(Pca9685Config {
+                                addr,
+                                freq_hz: r.u16()?,
+                            })
+                        } else {
+                            None
+                        };
+                        ModuleInit::Pca9685 { port, config }
+                    }
+                    ModuleType::HiwonderServo => {
+                        let uart = port(r)?;
+                        let (rx, tx) = (r.pin("rx")?, r.pin("tx")?);
+                        let count = r.u8()?;
+                        ModuleInit::HiwonderServo {
+                            uart,
+                            rx,
+                            tx,
+                            bus_ids: r.take(usize::from(count))?,
+                        }
+                    }
+                    ModuleType::ShutdownRelay => ModuleInit::ShutdownRelay {
+                        pin: r.pin("pin")?,
+                        active_high: r.flag("active_level")?,
+                        wait_s: r.u8()?,
+                    },
+                    ModuleType::Ssd1306 => {
+                        let port = port(r)?;
+                        let addr = if r.remaining() > 0 {
+                            let addr = r.u8()?;
+                            ensure(addr <= 0x7f, id, "addr")?;
+                            Some(addr)
+                        } else {
+                            None
+                        };
+                        ModuleInit::Ssd1306 { port, addr }
+                    }
+                };
+                Ok(ModuleNew::Add { module_num, init })
+            }
+            _ => Err(Error::OutOfRange {
+                id,
+                field: "subtype",
+            }),
+        }
+    }
+}
+
+fn port(r: &mut Reader<'_>) -> Result<u8, Error> {
+    let port = r.u8()?;
+    ensure(port <= 1, r.id(), "port")?;
+    Ok(port)
+}
+
+/// The data of a MODULE_DATA command for one kind of module.
+pub trait ModuleCommand: Sized {
+    /// The module type the data is for.
+    const MODULE_TYPE: ModuleType;
+
+    /// The data bytes (1..=28), checked as the module's parser would.
+    fn to_data(&self) -> Result<Payload<COMMAND_PAYLOAD_MAX>, EncodeError>;
+
+    /// Parse MODULE_DATA bytes sent to a module of this type.
+    fn parse(data: &[u8]) -> Result<Self, Error>;
+}
+
+impl<B> Command<B> {
+    /// A MODULE_DATA command carrying `message` for module `module_num`.
+    pub fn module_data<M: ModuleCommand>(
+        module_num: u8,
+        message: &M,
+    ) -> Result<OwnedCommand, EncodeError> {
+        Ok(Command::ModuleData {
+            module_num,
+            data: message.to_data()?,
+        })
+    }
+}
+
+/// Write `message`'s data with `write`, then check it with `M::parse`.
+fn data_of<M: ModuleCommand>(
+    write: impl FnOnce(&mut Writer<'_>),
+) -> Result<Payload<COMMAND_PAYLOAD_MAX>, EncodeError> {
+    let mut scratch = [0u8; COMMAND_PAYLOAD_MAX];
+    // The writer counts past the end of `scratch` without writing there, so
+    // an overlong message is measured, then refused.
+    let mut w = Writer::new(&mut scratch);
+    write(&mut w);
+    let n = w.len();
+    if n > COMMAND_PAYLOAD_MAX {
+        return Err(EncodeError::TooLong {
+            len: n,
+            max: COMMAND_PAYLOAD_MAX,
+        });
+    }
+    let data = scratch.get(..n).unwrap_or(&[]);
+    M::parse(data).map_err(Error::into_encode_error)?;
+    Payload::from_slice(data)
+}
+
+fn data_reader(data: &[u8]) -> Reader<'_> {
+    let len = u8::try_from(data.len() + 2).unwrap_or(u8::MAX);
+    Reader::new(command_id::MODULE_DATA, len, data)
+}
+
+/// Where a Hiwonder servo should move.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct ServoMove {
+    /// Servo index in the module's list.
+    pub idx: u8,
+    /// Angle in centidegrees, 0..=24000.
+    pub centideg: u16,
+    /// Move time in ms.
+    pub time_ms: u16,
+}
+
+/// Hiwonder servo data (module type 1), spec §7.1. Servos are addressed by
+/// their index in the init list. The firmware drops all of it unless the last
+/// PING is less than 2 s old.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum HiwonderCommand {
+    /// 1 SET_ANGLE: 1..=5 moves.
+    SetAngle(List<ServoMove, 5>),
+    /// 2 ENABLE: an empty list means all servos.
+    Enable {
+        /// Torque on or off.
+        enabled: bool,
+        /// Servo indices (at most 25), or none for all.
+        servos: List<u8, 25>,
+    },
+    /// 3 ID_WRITE: sets the id of whatever servo is on the bus.
+    IdWrite {
+        /// The new bus id.
+        new_id: u8,
+    },
+    /// 4 ID_VERIFY: answered by [`ModuleReport::HiwonderIdVerify`].
+    IdVerify {
+        /// Bus id to look for.
+        bus_id: u8,
+    },
+    /// 5 RANGE_WRITE.
+    RangeWrite {
+        /// Servo index.
+        idx: u8,
+        /// Lower limit in centidegrees, 0..=24000.
+        min_cdeg: u16,
+        /// Upper limit in centidegrees, 0..=24000.
+        max_cdeg: u16,
+    },
+    /// 6 RANGE_READ: answered by [`ModuleReport::HiwonderRange`].
+    RangeRead {
+        /// Servo index.
+        idx: u8,
+    },
+    /// 7 OFFSET_WRITE (saved on the servo).
+    OffsetWrite {
+        /// Servo index.
+        idx: u8,
+        /// Offset in centidegrees.
+        offset_cdeg: i16,
+    },
+    /// 8 OFFSET_READ: answered by [`ModuleReport::HiwonderOffset`].
+    OffsetRead {
+        /// Servo index.
+        idx: u8,
+    },
+    /// 9 VOLTAGE_LIMIT_WRITE (the firmware clamps to 4500..=14000 mV).
+    VoltageLimitWrite {
+        /// Servo index.
+        idx: u8,
+        /// Lower limit in mV.
+        min_mv: u16,
+        /// Upper limit in mV.
+        max_mv: u16,
+    },
+    /// 10 MOTOR_MODE_WRITE (speed 0 = servo mode).
+    MotorModeWrite {
+        /// Servo index.
+        idx: u8,
+        /// Speed.
+        speed: i16,
+    },
+    /// 11 ADD_SERVO: answered by [`ModuleReport::HiwonderAdded`].
+    AddServo {
+        /// Bus id of the servo.
+        bus_id: u8,
+    },
+}
+
+const MAX_CENTIDEG: u16 = 24000;
+
+impl ModuleCommand for HiwonderCommand {
+    const MODULE_TYPE: ModuleType = ModuleType::HiwonderServo;
+
+    fn to_data(&self) -> Result<Payload<COMMAND_PAYLOAD_MAX>, EncodeError> {
+        data_of::<Self>(|w| match self {
+            HiwonderCommand::SetAngle(moves) => {
+                w.bytes(&[1, moves.len() as u8]);
+                for m in moves {
+                    w.u8(m.idx);
+                    w.u16(m.centideg);
+                    w.u16(m.time_ms);
+                }
+            }
+            HiwonderCommand::Enable { enabled, servos } => {
+                w.bytes(&[2, servos.len() as u8]);
+                w.flag(*enabled);
+                w.bytes(servos);
+            }
+            HiwonderCommand::IdWrite { new_id } => w.bytes(&[3, *new_id]),
+            HiwonderCommand::IdVerify { bus_id } => w.bytes(&[4, *bus_id]),
+            HiwonderCommand::RangeWrite {
+                idx,
+                min_cdeg,
+                max_cdeg,
+            } => {
+                w.bytes(&[5, *idx]);
+                w.u16(*min_cdeg);
+                w.u16(*max_cdeg);
+            }
+            HiwonderCommand::RangeRead { idx } => w.bytes(&[6, *idx]),
+            HiwonderCommand::OffsetWrite { idx, offset_cdeg } => {
+                w.bytes(&[7, *idx]);
+                w.i16(*offset_cdeg);
+            }
+            HiwonderCommand::OffsetRead { idx } => w.bytes(&[8, *idx]),
+            HiwonderCommand::VoltageLimitWrite {
+                idx,
+                min_mv,
+                max_mv,
+            } => {
+                w.bytes(&[9, *idx]);
+                w.u16(*min_mv);
+                w.u16(*max_mv);
+            }
+            HiwonderCommand::MotorModeWrite { idx, speed } => {
+                w.bytes(&[10, *idx]);
+                w.i16(*speed);
+            }
+            HiwonderCommand::AddServo { bus_id } => w.bytes(&[11, *bus_id]),
+        })
+    }
+
+    fn parse(data: &[u8]) -> Result<Self, Error> {
+        let mut r = data_reader(data);
+        let id = r.id();
+        let message = match r.u8()? {
+            1 => {
+                let count = r.u8()?;
+                ensure((1..=5).contains(&count), id, "count")?;
+                let mut moves = List::new();
+                for _ in 0..count {
+                    let m = ServoMove {
+                        idx: r.u8()?,
+                        centideg: r.u16()?,
+                        time_ms: r.u16()?,
+                    };
+                    ensure(m.centideg <= MAX_CENTIDEG, id, "centideg")?;
+                    moves.push(m).map_err(|_| r.bad_length())?;
+                }
+                HiwonderCommand::SetAngle(moves)
+            }
+            2 => {
+                let count = r.u8()?;
+                let enabled = r.flag("enabled")?;
+                let servos =
+                    List::from_slice(r.take(usize::from(count))?).map_err(|_| r.bad_length())?;
+                HiwonderCommand::Enable { enabled, servos }
+            }
+            3 => HiwonderCommand::IdWrite { new_id: r.u8()? },
+            4 => HiwonderCommand::IdVerify { bus_id: r.u8()? },
+            5 => {
+                let idx = r.u8()?;
+                let (min_cdeg, max_cdeg) = (r.u16()?, r.u16()?);
+                ensure(min_cdeg <= MAX_CENTIDEG, id, "min_cdeg")?;
+                ensure(max_cdeg <= MAX_CENTIDEG, id, "max_cdeg")?;
+                HiwonderCommand::RangeWrite {
+                    idx,
+                    min_cdeg,
+                    max_cdeg,
+                }
+            }
+            6 => HiwonderCommand::RangeRead { idx: r.u8()? },
+            7 => HiwonderCommand::OffsetWrite {
+                idx: r.u8()?,
+                offset_cdeg: r.i16()?,
+            },
+            8 => HiwonderCommand::OffsetRead { idx: r.u8()? },
+            9 => HiwonderCommand::VoltageLimitWrite {
+                idx: r.u8()?,
+                min_mv: r.u16()?,
+                max_mv: r.u16()?,
+            },
+            10 => HiwonderCommand::MotorModeWrite {
+                idx: r.u8()?,
+                speed: r.i16()?,
+            },
+            11 => HiwonderCommand::AddServo { bus_id: r.u8()? },
+            _ => {
+                return Err(Error::OutOfRange {
+                    id,
+                    field: "subtype",
+                })
+            }
+        };
+        r.end()?;
+        Ok(message)
+    }
+}
+
+/// One PCA9685 channel setting.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Pca9685Channel {
+    /// Channel 0..=15.
+    pub channel: u8,
+    /// Tick at which the output turns on.
+    pub on: u16,
+    /// Tick at which the output turns off.
+    pub off: u16,
+}
+
+/// PCA9685 data (module type 0), spec §7.2: 1..=5 channel settings,
+/// big-endian.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Pca9685Command {
+    /// The channels to set.
+    pub channels: List<Pca9685Channel, 5>,
+}
+
+impl ModuleCommand for Pca9685Command {
+    const MODULE_TYPE: ModuleType = ModuleType::Pca9685;
+
+    fn to_data(&self) -> Result<Payload<COMMAND_PAYLOAD_MAX>, EncodeError> {
+        data_of::<Self>(|w| {
+            for c in &self.channels {
+                w.u8(c.channel);
+                w.u16(c.on);
+                w.u16(c.off);
+            }
+        })
+    }
+
+    fn parse(data: &[u8]) -> Result<Self, Error> {
+        let mut r = data_reader(data);
+        ensure(!data.is_empty(), r.id(), "channels")?;
+        let mut channels = List::new();
+        while r.remaining() > 0 {
+            let c = Pca9685Channel {
+                channel: r.u8()?,
+                on: r.u16()?,
+                off: r.u16()?,
+            };
+            ensure(c.channel <= 15, r.id(), "channel")?;
+            channels.push(c).map_err(|_| r.bad_length())?;
+        }
+        Ok(Pca9685Command { channels })
+    }
+}
+
+/// SSD1306 data (module type 3), spec §7.3.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Ssd1306Command {
+    /// 0 TEXT: at most 26 characters, appended to the text buffer.
+    Text(List<u8, 26>),
+    /// 1 TEXT_DONE: render the text buffer, then clear it.
+    TextDone,
+    /// 2 BINARY: 16 framebuffer bytes at `chunk * 16`.
+    Binary {
+        /// Chunk 0..=63.
+        chunk: u8,
+        /// The bytes.
+        data: [u8; 16],
+    },
+    /// 3 BINARY_DONE.
+    BinaryDone,
+}
+
+impl ModuleCommand for Ssd1306Command {
+    const MODULE_TYPE: ModuleType = ModuleType::Ssd1306;
+
+    fn to_data(&self) -> Result<Payload<COMMAND_PAYLOAD_MAX>, EncodeError> {
+        data_of::<Self>(|w| match self {
+            Ssd1306Command::Text(text) => {
+                w.bytes(&[0, text.len() as u8]);
+                w.bytes(text);
+            }
+            Ssd1306Command::TextDone => w.u8(1),
+            Ssd1306Command::Binary { chunk, data } => {
+                w.bytes(&[2, *chunk]);
+                w.bytes(data);
+            }
+            Ssd1306Command::BinaryDone => w.u8(3),
+        })
+    }
+
+    fn parse(data: &[u8]) -> Result<Self, Error> {
+        let mut r = data_reader(data);
+        let id = r.id();
+        let message = match r.u8()? {
+            0 => {
+                let n = r.u8()?;
+                ensure(n <= 26, id, "len")?;
+                let text = List::from_slice(r.take(usize::from(n))?).map_err(|_| r.bad_length())?;
+                Ssd1306Command::Text(text)
+            }
+            1 => Ssd1306Command::TextDone,
+            2 => {
+                let chunk = r.u8()?;
+                ensure(chunk <= 63, id, "chunk")?;
+                Ssd1306Command::Binary {
+                    chunk,
+                    data: r.array()?,
+                }
+            }
+            3 => Ssd1306Command::BinaryDone,
+            _ => {
+                return Err(Error::OutOfRange {
+                    id,
+                    field: "subtype",
+                })
+            }
+        };
+        r.end()?;
+        Ok(message)
+    }
+}
+
+/// Shutdown relay data (module type 2), spec §7.4.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum RelayCommand {
+    /// `[1]`: start the countdown (and stop PINGs feeding the watchdog).
+    Start,
+    /// `[0]`: cancel the countdown and re-enable the watchdog.
+    Cancel,
+}
+
+impl ModuleCommand for RelayCommand {
+    const MODULE_TYPE: ModuleType = ModuleType::ShutdownRelay;
+
+    fn to_data(&self) -> Result<Payload<COMMAND_PAYLOAD_MAX>, EncodeError> {
+        data_of::<Self>(|w| w.flag(*self == RelayCommand::Start))
+    }
+
+    fn parse(data: &[u8]) -> Result<Self, Error> {
+        let mut r = data_reader(data);
+        let start = r.flag("start")?;
+        r.end()?;
+        Ok(if start {
+            RelayCommand::Start
+        } else {
+            RelayCommand::Cancel
+        })
+    }
+}
+
+/// A Hiwonder servo position in a positions report.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct ServoPosition {
+    /// Servo index.
+    pub idx: u8,
+    /// Position in centidegrees (as read from the servo; not range-checked).
+    pub centideg: u16,
+}
+
+/// The positions of a Hiwonder positions report: `k × {idx, u16 centideg}`,
+/// k ≥ 1, kept as the raw bytes `B`.
+///
+/// With the `serde` feature it serializes as the raw bytes alone; like
+/// [`from_raw`](Self::from_raw), deserializing leaves them to be checked when
+/// encoded.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", serde(transparent))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ServoPositions<B> {
+    raw: B,
+}
+
+impl<B: AsRef<[u8]>> ServoPositions<B> {
+    /// Wrap raw bytes (3 per servo). They are checked when encoded.
+    pub const fn from_raw(raw: B) -> Self {
+        Self { raw }
+    }
+
+    /// The raw bytes.
+    pub fn raw(&self) -> &B {
+        &self.raw
+    }
+
+    /// Number of positions.
+    pub fn len(&self) -> usize {
+        self.raw.as_ref().len() / 3
+    }
+
+    /// Whether there are none (never, in a valid report).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The positions.
+    pub fn iter(&self) -> impl Iterator<Item = ServoPosition> + '_ {
+        self.raw.as_ref().chunks_exact(3).map(|c| ServoPosition {
+            idx: c[0],
+            centideg: u16::from_be_bytes([c[1], c[2]]),
+        })
+    }
+}
+
+impl<const N: usize> ServoPositions<Payload<N>> {
+    /// Owned positions from a list.
+    pub fn from_positions(positions: &[ServoPosition]) -> Result<Self, EncodeError> {
+        let mut raw = Payload::new();
+        for p in positions {
+            let [hi, lo] = p.centideg.to_be_bytes();
+            for b in [p.idx, hi, lo] {
+                raw.push(b).map_err(|_| EncodeError::TooLong {
+                    len: positions.len(),
+                    max: N / 3,
+                })?;
+            }
+        }
+        Ok(Self { raw })
+    }
+}
+
+/// Completion kind of an SSD1306 report.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Ssd1306Done {
+    /// After TEXT_DONE (1).
+    Text,
+    /// After BINARY_DONE (3).
+    Binary,
+}
+
+/// The data of a MODULE_REPORT (report 34), by module type and subtype.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ModuleReport<B> {
+    /// Hiwonder subtype 0: positions of changed servos (and each at least once
+    /// a second).
+    HiwonderPositions(ServoPositions<B>),
+    /// Hiwonder subtype 4: ID_VERIFY reply.
+    HiwonderIdVerify {
+        /// The bus id asked about.
+        bus_id: u8,
+        /// Whether it answered.
+        ok: bool,
+    },
+    /// Hiwonder subtype 6: RANGE_READ reply.
+    HiwonderRange {
+        /// Servo index.
+        idx: u8,
+        /// Lower limit in centidegrees.
+        min_cdeg: u16,
+        /// Upper limit in centidegrees.
+        max_cdeg: u16,
+    },
+    /// Hiwonder subtype 8: OFFSET_READ reply.
+    HiwonderOffset {
+        /// Servo index.
+        idx: u8,
+        /// Offset in centidegrees.
+        offset_cdeg: i16,
+    },
+    /// Hiwonder subtype 11: ADD_SERVO reply.
+    HiwonderAdded {
+        /// The bus id added.
+        bus_id: u8,
+        /// Its index.
+        idx: u8,
+    },
+    /// SSD1306: a text or binary transfer completed.
+    Ssd1306Done {
+        /// Which transfer.
+        kind: Ssd1306Done,
+        /// Text length, or 1.
+        len: u8,
+        /// Display x position.
+        display_x: u8,
+        /// Whether the display is enabled.
+        enabled: bool,
+    },
+    /// SSD1306: a request was refused because the display is disabled.
+    Ssd1306Disabled {
+        /// Subtype of the refused request (0..=3).
+        request_sub: u8,
+    },
+}
+
+impl<B> ModuleReport<B> {
+    /// The module type that sends this report.
+    pub const fn module_type(&self) -> ModuleType {
+        match self {
+            ModuleReport::Ssd1306Done { .. } | ModuleReport::Ssd1306Disabled { .. } => {
+                ModuleType::Ssd1306
+            }
+            _ => ModuleType::HiwonderServo,
+        }
+    }
+
+    pub(crate) fn map_bytes<C>(self, f: impl FnOnce(B) -> C) -> ModuleReport<C> {
+        match self {
+            ModuleReport::HiwonderPositions(p) => {
+                ModuleReport::HiwonderPositions(ServoPositions { raw: f(p.raw) })
+            }
+            ModuleReport::HiwonderIdVerify { bus_id, ok } => {
+                ModuleReport::HiwonderIdVerify { bus_id, ok }
+            }
+            ModuleReport::HiwonderRange {
+                idx,
+                min_cdeg,
+                max_cdeg,
+            } => ModuleReport::HiwonderRange {
+                idx,
+                min_cdeg,
+                max_cdeg,
+            },
+            ModuleReport::HiwonderOffset { idx, offset_cdeg } => {
+                ModuleReport::HiwonderOffset { idx, offset_cdeg }
+            }
+            ModuleReport::HiwonderAdded { bus_id, idx } => {
+                ModuleReport::HiwonderAdded { bus_id, idx }
+            }
+            ModuleReport::Ssd1306Done {
+                kind,
+                len,
+                display_x,
+                enabled,
+            } => ModuleReport::Ssd1306Done {
+                kind,
+                len,
+                display_x,
+                enabled,
+            },
+            ModuleReport::Ssd1306Disabled { request_sub } => {
+                ModuleReport::Ssd1306Disabled { request_sub }
+            }
+        }
+    }
+}
+
+impl<B: AsRef<[u8]>> ModuleReport<B> {
+    pub(crate) fn as_ref(&self) -> ModuleReport<&[u8]> {
+        match *self {
+            ModuleReport::HiwonderPositions(ref p) => {
+                ModuleReport::HiwonderPositions(ServoPositions {
+                    raw: p.raw.as_ref(),
+                })
+            }
+            ModuleReport::HiwonderIdVerify { bus_id, ok } => {
+                ModuleReport::HiwonderIdVerify { bus_id, ok }
+            }
+            ModuleReport::HiwonderRange {
+                idx,
+                min_cdeg,
+                max_cdeg,
+            } => ModuleReport::HiwonderRange {
+                idx,
+                min_cdeg,
+                max_cdeg,
+            },
+            ModuleReport::HiwonderOffset { idx, offset_cdeg } => {
+                ModuleReport::HiwonderOffset { idx, offset_cdeg }
+            }
+            ModuleReport::HiwonderAdded { bus_id, idx } => {
+                ModuleReport::HiwonderAdded { bus_id, idx }
+            }
+            ModuleReport::Ssd1306Done {
+                kind,
+                len,
+                display_x,
+                enabled,
+            } => ModuleReport::Ssd1306Done {
+                kind,
+                len,
+                display_x,
+                enabled,
+            },
+            ModuleReport::Ssd1306Disabled { request_sub } => {
+                ModuleReport::Ssd1306Disabled { request_sub }
+            }
+        }
+    }
+
+    /// Write `type, subtype/data` (after the module number).
+    pub(crate) fn write(&self, w: &mut Writer<'_>) {
+        w.u8(self.module_type().as_u8());
+        match self {
+            ModuleReport::HiwonderPositions(p) => {
+                w.u8(0);
+                w.bytes(p.raw.as_ref());
+            }
+            ModuleReport::HiwonderIdVerify { bus_id, ok } => {
+                w.bytes(&[4, *bus_id]);
+                w.flag(*ok);
+            }
+            ModuleReport::HiwonderRange {
+                idx,
+                min_cdeg,
+                max_cdeg,
+            } => {
+                w.bytes(&[6, *idx]);
+                w.u16(*min_cdeg);
+                w.u16(*max_cdeg);
+            }
+            ModuleReport::HiwonderOffset { idx, offset_cdeg } => {
+                w.bytes(&[8, *idx]);
+                w.i16(*offset_cdeg);
+            }
+            ModuleReport::HiwonderAdded { bus_id, idx } => w.bytes(&[11, *bus_id, *idx]),
+            ModuleReport::Ssd1306Done {
+                kind,
+                len,
+                display_x,
+                enabled,
+            } => {
+                let kind = match kind {
+                    Ssd1306Done::Text => 1,
+                    Ssd1306Done::Binary => 3,
+                };
+                w.bytes(&[kind, *len, *display_x]);
+                w.flag(*enabled);
+            }
+            ModuleReport::Ssd1306Disabled { request_sub } => w.bytes(&[*request_sub, 254]),
+        }
+    }
+}
+
+impl<'a> ModuleReport<&'a [u8]> {
+    /// Parse `type, …` after the module number.
+    pub(crate) fn parse(r: &mut Reader<'a>) -> Result<Self, Error> {
+        let id = r.id();
+        match ModuleType::from_u8(r.u8()?) {
+            Some(ModuleType::HiwonderServo) => Ok(match r.u8()? {
+                0 => {
+                    let raw = r.rest();
+                    if raw.is_empty() || raw.len() % 3 != 0 {
+                        return Err(r.bad_length());
+                    }
+                    ModuleReport::HiwonderPositions(ServoPositions { raw })
+                }
+                4 => ModuleReport::HiwonderIdVerify {
+                    bus_id: r.u8()?,
+                    ok: r.flag("ok")?,
+                },
+                6 => ModuleReport::HiwonderRange {
+                    idx: r.u8()?,
+                    min_cdeg: r.u16()?,
+                    max_cdeg: r.u16()?,
+                },
+                8 => ModuleReport::HiwonderOffset {
+                    idx: r.u8()?,
+                    offset_cdeg: r.i16()?,
+                },
+                11 => ModuleReport::HiwonderAdded {
+                    bus_id: r.u8()?,
+                    idx: r.u8()?,
+                },
+                _ => {
+                    return Err(Error::OutOfRange {
+                        id,
+                        field: "subtype",
+                    })
+                }
+            }),
+            Some(ModuleType::Ssd1306) => match r.remaining() {
+                4 => {
+                    let kind = match r.u8()? {
+                        1 => Ssd1306Done::Text,
+                        3 => Ssd1306Done::Binary,
+                        _ => {
+                            return Err(Error::OutOfRange {
+                                id,
+                                field: "msg_type",
+                            })
+                        }
+                    };
+                    Ok(ModuleReport::Ssd1306Done {
+                        kind,
+                        len: r.u8()?,
+                        display_x: r.u8()?,
+                        enabled: r.flag("enabled")?,
+                    })
+                }
+                2 => {
+                    let request_sub = r.u8()?;
+                    ensure(request_sub <= 3, id, "request_sub")?;
+                    ensure(r.u8()? == 254, id, "disabled marker")?;
+                    Ok(ModuleReport::Ssd1306Disabled { request_sub })
+                }
+                _ => Err(r.bad_length()),
+            },
+            // PCA9685 and the shutdown relay send no reports.
+            _ => Err(Error::OutOfRange {
+                id,
+                field: "module_type",
+            }),
+        }
+    }
+}
+
+/// Whether a report-34 `LEN` is possible given the bytes known so far
+/// (`LEN, 34, num, type, subtype, …`). Used to reject early.
+pub(crate) fn module_report_len_ok(len: u8, frame: &[u8]) -> bool {
+    match (frame.get(3), frame.get(4)) {
+        (None, _) => (5..=255).contains(&len),
+        (Some(1), None) => len >= 6,
+        (Some(1), Some(0)) => len >= 7 && (len - 4) % 3 == 0,
+        (Some(1), Some(4 | 11)) => len == 6,
+        (Some(1), Some(6)) => len == 9,
+        (Some(1), Some(8)) => len == 7,
+        (Some(1), Some(_)) => false,
+        (Some(3), _) => len == 5 || len == 7,
+        (Some(_), _) => false,
+    }
+}

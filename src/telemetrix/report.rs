@@ -1,0 +1,1138 @@
+//! Reports (Pico → host), spec §5.
+
+use super::analog_pin_ok;
+use super::command::split_frame;
+use super::dialect::Dialect;
+use super::error::{ensure, Error};
+use super::list::Payload;
+use super::module::{module_report_len_ok, ModuleReport};
+use super::sensor::{SensorReading, SensorType};
+use super::wire::{Reader, Writer};
+use crate::encode::check_room;
+use crate::{Encode, EncodeError};
+
+/// Report ids (Pico → host), mirte firmware 1.3 numbering (spec §5).
+pub mod report_id {
+    /// SERIAL_LOOP_BACK_REPORT.
+    pub const SERIAL_LOOP_BACK: u8 = 0;
+    /// DIGITAL_REPORT.
+    pub const DIGITAL: u8 = 2;
+    /// ANALOG_REPORT.
+    pub const ANALOG: u8 = 3;
+    /// FIRMWARE_REPORT.
+    pub const FIRMWARE: u8 = 5;
+    /// REPORT_PICO_UNIQUE_ID.
+    pub const UNIQUE_ID: u8 = 6;
+    /// I2C_WRITE_REPORT (upstream: I2C_WRITE_FAILED).
+    pub const I2C_WRITE: u8 = 8;
+    /// I2C_READ_FAILED.
+    pub const I2C_READ_FAILED: u8 = 9;
+    /// I2C_READ_REPORT.
+    pub const I2C_READ: u8 = 10;
+    /// SONAR_DISTANCE.
+    pub const SONAR: u8 = 11;
+    /// DHT_REPORT.
+    pub const DHT: u8 = 12;
+    /// SPI_REPORT.
+    pub const SPI: u8 = 13;
+    /// ENCODER_REPORT.
+    pub const ENCODER: u8 = 14;
+    /// SENSOR_REPORT.
+    pub const SENSOR: u8 = 20;
+    /// SENSOR_MAIN_REPORT.
+    pub const SENSOR_MAIN: u8 = 21;
+    /// PONG_REPORT.
+    pub const PONG: u8 = 32;
+    /// MODULE_MAIN_REPORT.
+    pub const MODULE_MAIN: u8 = 33;
+    /// MODULE_REPORT.
+    pub const MODULE: u8 = 34;
+    /// GET_ID_REPORT.
+    pub const GET_ID: u8 = 35;
+    /// SET_ID_REPORT.
+    pub const SET_ID: u8 = 36;
+    /// FEATURE_CHECK.
+    pub const FEATURE_CHECK: u8 = 37;
+    /// DEBUG_PRINT.
+    pub const DEBUG_PRINT: u8 = 99;
+}
+
+use report_id as id;
+
+/// Whether `dialect` defines report `id` (and robowire covers it there).
+pub(crate) const fn report_known(dialect: Dialect, id: u8) -> bool {
+    match id {
+        id::SERIAL_LOOP_BACK
+        | id::DIGITAL
+        | id::ANALOG
+        | id::FIRMWARE
+        | id::UNIQUE_ID
+        | id::I2C_WRITE
+        | id::I2C_READ
+        | id::SONAR
+        | id::DHT
+        | id::SPI => true,
+        id::I2C_READ_FAILED | id::ENCODER | id::PONG | id::DEBUG_PRINT => dialect.is_mirte(),
+        id::SENSOR
+        | id::SENSOR_MAIN
+        | id::MODULE_MAIN
+        | id::MODULE
+        | id::GET_ID
+        | id::SET_ID
+        | id::FEATURE_CHECK => matches!(dialect, Dialect::Mirte13),
+        _ => false,
+    }
+}
+
+/// Largest I2C read (spec §4, command 11).
+const I2C_READ_MAX: u8 = 57;
+/// Largest SPI read (spec §4, command 26).
+const SPI_READ_MAX: u8 = 60;
+/// Sonar distances at or above this (other than the sentinels) are impossible:
+/// the firmware gives up after 30 ms of echo, about 517 cm.
+const SONAR_CM_LIMIT: u16 = 1000;
+
+/// How many frame bytes (counting `LEN` and id) the early `LEN` check of
+/// report `id` looks at.
+pub(crate) const fn report_header_len(id: u8) -> usize {
+    match id {
+        id::I2C_READ => 6,
+        id::SPI | id::SENSOR => 4,
+        id::MODULE => 5,
+        id::FEATURE_CHECK => 8,
+        _ => 2,
+    }
+}
+
+/// Whether `len` is possible for a known report, given the frame bytes known so
+/// far (at least `LEN` and id). Never rejects a frame [`parse_report`] accepts.
+pub(crate) fn report_len_ok(dialect: Dialect, len: u8, frame: &[u8]) -> bool {
+    let Some(&rid) = frame.get(1) else {
+        return true;
+    };
+    let at = |i: usize| frame.get(i).copied();
+    match rid {
+        id::SERIAL_LOOP_BACK | id::GET_ID | id::SET_ID => len == 2,
+        id::DIGITAL | id::FIRMWARE | id::ENCODER | id::PONG => len == 3,
+        id::ANALOG | id::I2C_WRITE | id::I2C_READ_FAILED | id::SENSOR_MAIN | id::MODULE_MAIN => {
+            len == 4
+        }
+        id::DEBUG_PRINT => len == 4,
+        id::UNIQUE_ID => len == 9,
+        id::DHT => len == 6,
+        id::SONAR => len == 4 || (len == 5 && matches!(dialect, Dialect::Mirte13)),
+        id::I2C_READ => {
+            let extra = if dialect.is_mirte() { 6 } else { 5 };
+            match at(5) {
+                None => len > extra && len <= extra + I2C_READ_MAX,
+                Some(n) => (1..=I2C_READ_MAX).contains(&n) && len == extra + n,
+            }
+        }
+        id::SPI => match at(3) {
+            None => (3..=3 + SPI_READ_MAX).contains(&len),
+            Some(n) => n <= SPI_READ_MAX && len == 3 + n,
+        },
+        id::SENSOR => match at(3) {
+            None => (3..=56).contains(&len),
+            Some(t) => match SensorType::from_u8(t).and_then(SensorType::data_len) {
+                None => false,
+                Some((min, max)) => {
+                    let data = usize::from(len).wrapping_sub(3);
+                    len >= 3 && data >= min && data <= max && (t != 8 || data % 2 == 0)
+                }
+            },
+        },
+        id::MODULE => module_report_len_ok(len, frame),
+        id::FEATURE_CHECK => match (at(2), at(3)) {
+            (Some(msg_type), Some(1)) => match feature_extras(msg_type) {
+                Extras::Counted => match at(7) {
+                    None => len >= 7,
+                    Some(count) => count <= 8 && usize::from(len) == 7 + usize::from(count),
+                },
+                Extras::Len(a, b) => len == 3 + a || len == 3 + b,
+            },
+            (Some(_), Some(0)) => len == 3,
+            (Some(_), Some(_)) => false,
+            _ => (3..=15).contains(&len),
+        },
+        _ => true,
+    }
+}
+
+/// The extras a FEATURE_CHECK report carries for a `msg_type` (spec §5).
+enum Extras {
+    /// One of two lengths (older firmware sent fewer for some ids).
+    Len(u8, u8),
+    /// 4 bytes, the 4th a count of analog pins that follow.
+    Counted,
+}
+
+const fn feature_extras(msg_type: u8) -> Extras {
+    match msg_type {
+        1 => Extras::Counted,
+        5 => Extras::Len(2, 2),
+        7 => Extras::Len(0, 1),
+        10 | 13 => Extras::Len(1, 1),
+        30 => Extras::Len(2, 3),
+        _ => Extras::Len(0, 0),
+    }
+}
+
+/// What a sonar reading means.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SonarReading {
+    /// A distance, in hundredths of a centimetre.
+    Distance {
+        /// Distance × 100, in cm.
+        hundredths_cm: u32,
+    },
+    /// `FFFC`: no echo.
+    NoEcho,
+    /// `FFFD`: echo longer than 30 ms ("+Inf").
+    OutOfRange,
+    /// `FFFE`: not triggered for more than 1 s ("NaN").
+    Stale,
+}
+
+/// Sonar `u16` sentinel: no echo.
+pub const SONAR_NO_ECHO: u16 = 0xFFFC;
+/// Sonar `u16` sentinel: echo longer than 30 ms.
+pub const SONAR_OUT_OF_RANGE: u16 = 0xFFFD;
+/// Sonar `u16` sentinel: not triggered for more than 1 s.
+pub const SONAR_STALE: u16 = 0xFFFE;
+
+/// SONAR_DISTANCE (report 11), in the form the dialect and `LEN` select.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Sonar {
+    /// mirte 1.3, `LEN` 5: `trig, echo, u16 cm` (or a sentinel).
+    WithEcho {
+        /// Trigger GPIO.
+        trig: u8,
+        /// Echo GPIO.
+        echo: u8,
+        /// Distance in cm, or `SONAR_*` sentinel.
+        cm: u16,
+    },
+    /// mirte 1.3 builds of 2024-09..2025-11, `LEN` 4: `trig, u16 cm`.
+    TrigOnly {
+        /// Trigger GPIO.
+        trig: u8,
+        /// Distance in cm, or `SONAR_*` sentinel.
+        cm: u16,
+    },
+    /// mirte 1.2, `LEN` 4: `trig, m, cm` (distance `m·100 + cm`).
+    MetresCm {
+        /// Trigger GPIO.
+        trig: u8,
+        /// Metres.
+        m: u8,
+        /// Centimetres, 0..=99.
+        cm: u8,
+    },
+    /// upstream 1.1, `LEN` 4: `trig, cm, hundredths`.
+    CmHundredths {
+        /// Trigger GPIO.
+        trig: u8,
+        /// Centimetres.
+        cm: u8,
+        /// Hundredths of a centimetre, 0..=99.
+        hundredths: u8,
+    },
+}
+
+impl Sonar {
+    /// Trigger GPIO.
+    pub const fn trig(&self) -> u8 {
+        match *self {
+            Sonar::WithEcho { trig, .. }
+            | Sonar::TrigOnly { trig, .. }
+            | Sonar::MetresCm { trig, .. }
+            | Sonar::CmHundredths { trig, .. } => trig,
+        }
+    }
+
+    /// Echo GPIO, where the form carries it.
+    pub const fn echo(&self) -> Option<u8> {
+        match *self {
+            Sonar::WithEcho { echo, .. } => Some(echo),
+            _ => None,
+        }
+    }
+
+    /// The reading, with the sentinels decoded.
+    pub const fn reading(&self) -> SonarReading {
+        let cm = match *self {
+            Sonar::WithEcho { cm, .. } | Sonar::TrigOnly { cm, .. } => cm,
+            Sonar::MetresCm { m, cm, .. } => {
+                return SonarReading::Distance {
+                    hundredths_cm: (m as u32 * 100 + cm as u32) * 100,
+                }
+            }
+            Sonar::CmHundredths { cm, hundredths, .. } => {
+                return SonarReading::Distance {
+                    hundredths_cm: cm as u32 * 100 + hundredths as u32,
+                }
+            }
+        };
+        match cm {
+            SONAR_NO_ECHO => SonarReading::NoEcho,
+            SONAR_OUT_OF_RANGE => SonarReading::OutOfRange,
+            SONAR_STALE => SonarReading::Stale,
+            cm => SonarReading::Distance {
+                hundredths_cm: cm as u32 * 100,
+            },
+        }
+    }
+
+    const fn in_dialect(&self, dialect: Dialect) -> bool {
+        matches!(
+            (self, dialect),
+            (
+                Sonar::WithEcho { .. } | Sonar::TrigOnly { .. },
+                Dialect::Mirte13
+            ) | (Sonar::MetresCm { .. }, Dialect::Mirte12)
+                | (Sonar::CmHundredths { .. }, Dialect::Upstream11)
+        )
+    }
+}
+
+/// A report, Pico → host. `B` holds the variable byte fields: `&[u8]` when
+/// parsed from a frame (see [`ReportRef`]) or for encoding borrowed data,
+/// [`Payload`] in the owned form ([`OwnedReport`]).
+///
+/// With the `serde` feature a [`ReportRef`] and its [`OwnedReport`] serialize
+/// alike (byte fields as sequences of numbers). Deserialize an
+/// [`OwnedReport`]; a [`ReportRef`] deserializes only from formats that hand
+/// out borrowed bytes (postcard, bincode; not JSON). Sensor floats are
+/// written as numbers, so JSON loses NaN and infinities (written as `null`).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Report<B> {
+    /// 0: loopback echo.
+    LoopBack {
+        /// The echoed byte.
+        byte: u8,
+    },
+    /// 2: a digital input changed.
+    Digital {
+        /// GPIO (< 30).
+        pin: u8,
+        /// Level.
+        high: bool,
+    },
+    /// 3: an analog input changed.
+    Analog {
+        /// GPIO 26..=30 (mirte 1.3; ADC 0..=4 from older builds is accepted
+        /// too), ADC 0..=4 in older dialects.
+        pin: u8,
+        /// 0..=4095.
+        value: u16,
+    },
+    /// 5: firmware version (mirte 1.3 sends 1.3).
+    FirmwareVersion {
+        /// Major.
+        major: u8,
+        /// Minor.
+        minor: u8,
+    },
+    /// 6: unique id (6 board bytes, then `00 00` in mirte firmware).
+    UniqueId {
+        /// The 8 bytes.
+        id: [u8; 8],
+    },
+    /// 8 (mirte): I2C write result, always sent.
+    I2cWrite {
+        /// Port.
+        port: u8,
+        /// The command's `msg_id`.
+        msg_id: u8,
+        /// Bytes written, or −1 (error), −2 (timeout).
+        result: i8,
+    },
+    /// 8 (upstream): I2C_WRITE_FAILED, sent on failure only.
+    I2cWriteFailed {
+        /// Port.
+        port: u8,
+        /// Address.
+        addr: u8,
+        /// Meaningless byte.
+        stale: u8,
+    },
+    /// 9 (mirte): I2C read NAK.
+    I2cReadFailed {
+        /// Port.
+        port: u8,
+        /// Address.
+        addr: u8,
+        /// Leftover from the previous I2C report.
+        stale: u8,
+    },
+    /// 10 (mirte): I2C read data, `port, msg_id, reg, n, 00, data`.
+    I2cRead {
+        /// Port.
+        port: u8,
+        /// The command's `msg_id`.
+        msg_id: u8,
+        /// Register.
+        reg: u8,
+        /// 1..=57 bytes.
+        data: B,
+    },
+    /// 10 (upstream): I2C read data, `port, addr, reg, n, data`.
+    I2cReadUpstream {
+        /// Port.
+        port: u8,
+        /// Address.
+        addr: u8,
+        /// Register.
+        reg: u8,
+        /// 1..=57 bytes.
+        data: B,
+    },
+    /// 11: sonar distance.
+    Sonar(Sonar),
+    /// 12: DHT reading (all zeros after a read error). Below 0 °C both
+    /// temperature parts are negative.
+    Dht {
+        /// GPIO (< 30).
+        pin: u8,
+        /// Humidity, integer part.
+        humidity: u8,
+        /// Humidity, hundredths (0..=99).
+        humidity_hundredths: u8,
+        /// Temperature in °C, integer part.
+        temp: i8,
+        /// Temperature, hundredths (−99..=99, same sign as `temp`).
+        temp_hundredths: i8,
+    },
+    /// 13: SPI read data.
+    Spi {
+        /// Port.
+        port: u8,
+        /// 0..=60 bytes.
+        data: B,
+    },
+    /// 14 (mirte): encoder steps since the last report (never 0).
+    Encoder {
+        /// GPIO A (< 30).
+        pin: u8,
+        /// Steps.
+        steps: i8,
+    },
+    /// 20 (mirte 1.3): a sensor reading.
+    Sensor {
+        /// The sensor's number.
+        sensor_num: u8,
+        /// Type and data.
+        reading: SensorReading,
+    },
+    /// 21 (mirte 1.3): answer to a sensor check.
+    SensorSupported {
+        /// The type asked about.
+        sensor_type: u8,
+        /// Supported.
+        supported: bool,
+    },
+    /// 32 (mirte): answer to PING.
+    Pong {
+        /// The PING's counter.
+        counter: u8,
+        /// Random per boot, 0..=99: a change means the Pico rebooted.
+        boot_id: u8,
+    },
+    /// 33 (mirte 1.3): answer to a module check.
+    ModuleSupported {
+        /// The type asked about.
+        module_type: u8,
+        /// Supported.
+        supported: bool,
+    },
+    /// 34 (mirte 1.3): a module's report.
+    Module {
+        /// The module's number.
+        module_num: u8,
+        /// Type, subtype and data.
+        report: ModuleReport<B>,
+    },
+    /// 35 (mirte 1.3): the saved id (`FF` if never set).
+    Id {
+        /// The id.
+        id: u8,
+    },
+    /// 36 (mirte 1.3): the id just saved.
+    IdSet {
+        /// The id.
+        id: u8,
+    },
+    /// 37 (mirte 1.3): answer to FEATURE_CHECK.
+    Feature {
+        /// The command id asked about.
+        msg_type: u8,
+        /// Whether the firmware has it.
+        supported: bool,
+        /// Extras (spec §5): for 1 `30 12 14 count pins…`, for 5 `1 3`, for
+        /// 7 `12`, for 10 `2`, for 13 `4`, for 30 `4 2 1`; none otherwise.
+        extras: B,
+    },
+    /// 99 (mirte): debug print.
+    Debug {
+        /// Where it came from.
+        id: u8,
+        /// Value.
+        value: u16,
+    },
+    /// A report id the dialect does not define: decoded only by a lenient
+    /// [`ReportFraming`](super::ReportFraming).
+    Unknown {
+        /// The id.
+        id: u8,
+        /// The payload.
+        payload: B,
+    },
+}
+
+/// A report borrowing its variable fields from a frame or the caller.
+pub type ReportRef<'a> = Report<&'a [u8]>;
+
+/// Capacity of [`OwnedReport`]'s byte fields: the largest payload after the id.
+pub const REPORT_PAYLOAD_MAX: usize = 254;
+
+/// A report owning its variable fields.
+pub type OwnedReport = Report<Payload<REPORT_PAYLOAD_MAX>>;
+
+impl<B> Report<B> {
+    /// The report id.
+    pub const fn id(&self) -> u8 {
+        match self {
+            Report::LoopBack { .. } => id::SERIAL_LOOP_BACK,
+            Report::Digital { .. } => id::DIGITAL,
+            Report::Analog { .. } => id::ANALOG,
+            Report::FirmwareVersion { .. } => id::FIRMWARE,
+            Report::UniqueId { .. } => id::UNIQUE_ID,
+            Report::I2cWrite { .. } | Report::I2cWriteFailed { .. } => id::I2C_WRITE,
+            Report::I2cReadFailed { .. } => id::I2C_READ_FAILED,
+            Report::I2cRead { .. } | Report::I2cReadUpstream { .. } => id::I2C_READ,
+            Report::Sonar(_) => id::SONAR,
+            Report::Dht { .. } => id::DHT,
+            Report::Spi { .. } => id::SPI,
+            Report::Encoder { .. } => id::ENCODER,
+            Report::Sensor { .. } => id::SENSOR,
+            Report::SensorSupported { .. } => id::SENSOR_MAIN,
+            Report::Pong { .. } => id::PONG,
+            Report::ModuleSupported { .. } => id::MODULE_MAIN,
+            Report::Module { .. } => id::MODULE,
+            Report::Id { .. } => id::GET_ID,
+            Report::IdSet { .. } => id::SET_ID,
+            Report::Feature { .. } => id::FEATURE_CHECK,
+            Report::Debug { .. } => id::DEBUG_PRINT,
+            Report::Unknown { id, .. } => *id,
+        }
+    }
+
+    /// The same report with its byte fields converted by `f`.
+    pub fn map_bytes<C>(self, mut f: impl FnMut(B) -> C) -> Report<C> {
+        match self {
+            Report::I2cRead {
+                port,
+                msg_id,
+                reg,
+                data,
+            } => Report::I2cRead {
+                port,
+                msg_id,
+                reg,
+                data: f(data),
+            },
+            Report::I2cReadUpstream {
+                port,
+                addr,
+                reg,
+                data,
+            } => Report::I2cReadUpstream {
+                port,
+                addr,
+                reg,
+                data: f(data),
+            },
+            Report::Spi { port, data } => Report::Spi {
+                port,
+                data: f(data),
+            },
+            Report::Module { module_num, report } => Report::Module {
+                module_num,
+                report: report.map_bytes(f),
+            },
+            Report::Feature {
+                msg_type,
+                supported,
+                extras,
+            } => Report::Feature {
+                msg_type,
+                supported,
+                extras: f(extras),
+            },
+            Report::Unknown { id, payload } => Report::Unknown {
+                id,
+                payload: f(payload),
+            },
+            // Every other variant has no byte field: `plain` copies it.
+            other => other.plain().unwrap_or(Report::LoopBack { byte: 0 }),
+        }
+    }
+
+    /// A copy of a variant without byte fields (`None` for the others).
+    fn plain<C>(&self) -> Option<Report<C>> {
+        Some(match *self {
+            Report::LoopBack { byte } => Report::LoopBack { byte },
+            Report::Digital { pin, high } => Report::Digital { pin, high },
+            Report::Analog { pin, value } => Report::Analog { pin, value },
+            Report::FirmwareVersion { major, minor } => Report::FirmwareVersion { major, minor },
+            Report::UniqueId { id } => Report::UniqueId { id },
+            Report::I2cWrite {
+                port,
+                msg_id,
+                result,
+            } => Report::I2cWrite {
+                port,
+                msg_id,
+                result,
+            },
+            Report::I2cWriteFailed { port, addr, stale } => {
+                Report::I2cWriteFailed { port, addr, stale }
+            }
+            Report::I2cReadFailed { port, addr, stale } => {
+                Report::I2cReadFailed { port, addr, stale }
+            }
+            Report::Sonar(s) => Report::Sonar(s),
+            Report::Dht {
+                pin,
+                humidity,
+                humidity_hundredths,
+                temp,
+                temp_hundredths,
+            } => Report::Dht {
+                pin,
+                humidity,
+                humidity_hundredths,
+                temp,
+                temp_hundredths,
+            },
+            Report::Encoder { pin, steps } => Report::Encoder { pin, steps },
+            Report::Sensor {
+                sensor_num,
+                reading,
+            } => Report::Sensor {
+                sensor_num,
+                reading,
+            },
+            Report::SensorSupported {
+                sensor_type,
+                supported,
+            } => Report::SensorSupported {
+                sensor_type,
+                supported,
+            },
+            Report::Pong { counter, boot_id } => Report::Pong { counter, boot_id },
+            Report::ModuleSupported {
+                module_type,
+                supported,
+            } => Report::ModuleSupported {
+                module_type,
+                supported,
+            },
+            Report::Id { id } => Report::Id { id },
+            Report::IdSet { id } => Report::IdSet { id },
+            Report::Debug { id, value } => Report::Debug { id, value },
+            Report::I2cRead { .. }
+            | Report::I2cReadUpstream { .. }
+            | Report::Spi { .. }
+            | Report::Module { .. }
+            | Report::Feature { .. }
+            | Report::Unknown { .. } => return None,
+        })
+    }
+}
+
+impl<B: AsRef<[u8]>> Report<B> {
+    /// A borrowed view of this report.
+    pub fn as_ref(&self) -> ReportRef<'_> {
+        match self {
+            Report::I2cRead {
+                port,
+                msg_id,
+                reg,
+                data,
+            } => Report::I2cRead {
+                port: *port,
+                msg_id: *msg_id,
+                reg: *reg,
+                data: data.as_ref(),
+            },
+            Report::I2cReadUpstream {
+                port,
+                addr,
+                reg,
+                data,
+            } => Report::I2cReadUpstream {
+                port: *port,
+                addr: *addr,
+                reg: *reg,
+                data: data.as_ref(),
+            },
+            Report::Spi { port, data } => Report::Spi {
+                port: *port,
+                data: data.as_ref(),
+            },
+            Report::Module { module_num, report } => Report::Module {
+                module_num: *module_num,
+                report: report.as_ref(),
+            },
+            Report::Feature {
+                msg_type,
+                supported,
+                extras,
+            } => Report::Feature {
+                msg_type: *msg_type,
+                supported: *supported,
+                extras: extras.as_ref(),
+            },
+            Report::Unknown { id, payload } => Report::Unknown {
+                id: *id,
+                payload: payload.as_ref(),
+            },
+            other => other.plain().unwrap_or(Report::LoopBack { byte: 0 }),
+        }
+    }
+
+    /// An owned copy (byte fields copied into [`Payload`]s).
+    pub fn to_owned(&self) -> OwnedReport {
+        self.as_ref().map_bytes(Payload::truncating)
+    }
+
+    /// Frame length of this report in `dialect`.
+    pub fn encoded_len_in(&self, dialect: Dialect) -> usize {
+        let mut w = Writer::new(&mut []);
+        self.write(&mut w, dialect);
+        w.len()
+    }
+
+    /// Encode this report for `dialect` into the front of `out`; returns the
+    /// frame length. Nothing is written on error.
+    pub fn encode_in(&self, dialect: Dialect, out: &mut [u8]) -> Result<usize, EncodeError> {
+        self.check_dialect(dialect)?;
+        let n = self.encoded_len_in(dialect);
+        if n > MAX_REPORT_FRAME {
+            return Err(EncodeError::TooLong {
+                len: n - 1,
+                max: MAX_REPORT_FRAME - 1,
+            });
+        }
+        check_room(out, n)?;
+        let mut scratch = [0u8; MAX_REPORT_FRAME];
+        let mut w = Writer::new(&mut scratch);
+        self.write(&mut w, dialect);
+        let frame = scratch.get(..n).unwrap_or(&[]);
+        // The decoder is the one definition of a valid frame.
+        let lenient = matches!(self, Report::Unknown { .. });
+        parse_report_with(dialect, lenient, frame).map_err(Error::into_encode_error)?;
+        if let Some(dst) = out.get_mut(..n) {
+            dst.copy_from_slice(frame);
+        }
+        Ok(n)
+    }
+
+    fn check_dialect(&self, dialect: Dialect) -> Result<(), EncodeError> {
+        let ok = match self {
+            Report::Unknown { id, .. } => !report_known(dialect, *id),
+            Report::I2cWrite { .. } | Report::I2cRead { .. } => dialect.is_mirte(),
+            Report::I2cWriteFailed { .. } | Report::I2cReadUpstream { .. } => !dialect.is_mirte(),
+            Report::Sonar(s) => s.in_dialect(dialect),
+            other => report_known(dialect, other.id()),
+        };
+        if ok {
+            Ok(())
+        } else {
+            Err(EncodeError::Inconsistent {
+                what: "the report does not exist in this dialect",
+            })
+        }
+    }
+
+    fn write(&self, w: &mut Writer<'_>, dialect: Dialect) {
+        w.u8(0);
+        w.u8(self.id());
+        self.write_payload(w, dialect);
+        w.patch_len();
+    }
+
+    fn write_payload(&self, w: &mut Writer<'_>, _dialect: Dialect) {
+        match self {
+            Report::LoopBack { byte } => w.u8(*byte),
+            Report::Digital { pin, high } => {
+                w.u8(*pin);
+                w.flag(*high);
+            }
+            Report::Analog { pin, value } => {
+                w.u8(*pin);
+                w.u16(*value);
+            }
+            Report::FirmwareVersion { major, minor } => w.bytes(&[*major, *minor]),
+            Report::UniqueId { id } => w.bytes(id),
+            Report::I2cWrite {
+                port,
+                msg_id,
+                result,
+            } => {
+                w.bytes(&[*port, *msg_id]);
+                w.i8(*result);
+            }
+            Report::I2cWriteFailed { port, addr, stale }
+            | Report::I2cReadFailed { port, addr, stale } => w.bytes(&[*port, *addr, *stale]),
+            Report::I2cRead {
+                port,
+                msg_id,
+                reg,
+                data,
+            } => {
+                let data = data.as_ref();
+                w.bytes(&[*port, *msg_id, *reg, data.len() as u8, 0]);
+                w.bytes(data);
+            }
+            Report::I2cReadUpstream {
+                port,
+                addr,
+                reg,
+                data,
+            } => {
+                let data = data.as_ref();
+                w.bytes(&[*port, *addr, *reg, data.len() as u8]);
+                w.bytes(data);
+            }
+            Report::Sonar(s) => match *s {
+                Sonar::WithEcho { trig, echo, cm } => {
+                    w.bytes(&[trig, echo]);
+                    w.u16(cm);
+                }
+                Sonar::TrigOnly { trig, cm } => {
+                    w.u8(trig);
+                    w.u16(cm);
+                }
+                Sonar::MetresCm { trig, m, cm } => w.bytes(&[trig, m, cm]),
+                Sonar::CmHundredths {
+                    trig,
+                    cm,
+                    hundredths,
+                } => w.bytes(&[trig, cm, hundredths]),
+            },
+            Report::Dht {
+                pin,
+                humidity,
+                humidity_hundredths,
+                temp,
+                temp_hundredths,
+            } => {
+                w.bytes(&[*pin, *humidity, *humidity_hundredths]);
+                w.i8(*temp);
+                w.i8(*temp_hundredths);
+            }
+            Report::Spi { port, data } => {
+                let data = data.as_ref();
+                w.bytes(&[*port, data.len() as u8]);
+                w.bytes(data);
+            }
+            Report::Encoder { pin, steps } => {
+                w.u8(*pin);
+                w.i8(*steps);
+            }
+            Report::Sensor {
+                sensor_num,
+                reading,
+            } => {
+                w.bytes(&[*sensor_num, reading.sensor_type().as_u8()]);
+                reading.write(w);
+            }
+            Report::SensorSupported {
+                sensor_type,
+                supported,
+            } => {
+                w.bytes(&[0, *sensor_type]);
+                w.flag(*supported);
+            }
+            Report::Pong { counter, boot_id } => w.bytes(&[*counter, *boot_id]),
+            Report::ModuleSupported {
+                module_type,
+                supported,
+            } => {
+                w.bytes(&[0, *module_type]);
+                w.flag(*supported);
+            }
+            Report::Module { module_num, report } => {
+                w.u8(*module_num);
+                report.write(w);
+            }
+            Report::Id { id } | Report::IdSet { id } => w.u8(*id),
+            Report::Feature {
+                msg_type,
+                supported,
+                extras,
+            } => {
+                w.u8(*msg_type);
+                w.flag(*supported);
+                w.bytes(extras.as_ref());
+            }
+            Report::Debug { id, value } => {
+                w.u8(*id);
+                w.u16(*value);
+            }
+            Report::Unknown { payload, .. } => w.bytes(payload.as_ref()),
+        }
+    }
+}
+
+/// The longest report frame: `LEN` 255 and the `LEN` byte.
+pub(crate) const MAX_REPORT_FRAME: usize = 256;
+
+impl<B: AsRef<[u8]>> Encode for Report<B> {
+    const MAX_LEN: usize = MAX_REPORT_FRAME;
+
+    /// The frame length in the default dialect (mirte 1.3).
+    fn encoded_len(&self) -> usize {
+        self.encoded_len_in(Dialect::Mirte13)
+    }
+
+    /// Encode for the default dialect (mirte 1.3); see [`Report::encode_in`]
+    /// and [`InDialect`](super::InDialect) for others.
+    fn encode(&self, out: &mut [u8]) -> Result<usize, EncodeError> {
+        self.encode_in(Dialect::Mirte13, out)
+    }
+}
+
+/// Parse one complete report frame (`LEN` byte first) for `dialect`; unknown
+/// ids are errors. This is the one definition of a valid report: the decoder
+/// accepts exactly what it accepts, and the encoder emits nothing it rejects.
+pub fn parse_report(dialect: Dialect, frame: &[u8]) -> Result<ReportRef<'_>, Error> {
+    parse_report_with(dialect, false, frame)
+}
+
+/// [`parse_report`], with unknown ids accepted as [`Report::Unknown`] when
+/// `lenient`.
+pub(crate) fn parse_report_with(
+    dialect: Dialect,
+    lenient: bool,
+    frame: &[u8],
+) -> Result<ReportRef<'_>, Error> {
+    let (len, rid, payload) = split_frame(frame)?;
+    if !report_known(dialect, rid) {
+        return if lenient {
+            Ok(Report::Unknown { id: rid, payload })
+        } else {
+            Err(Error::UnknownId { id: rid })
+        };
+    }
+    if !report_len_ok(dialect, len, frame) {
+        return Err(Error::BadLength { id: rid, len });
+    }
+    let mut r = Reader::new(rid, len, payload);
+    let report = parse_payload(dialect, &mut r)?;
+    r.end()?;
+    Ok(report)
+}
+
+fn port(r: &mut Reader<'_>) -> Result<u8, Error> {
+    let port = r.u8()?;
+    ensure(port <= 1, r.id(), "port")?;
+    Ok(port)
+}
+
+fn i2c_addr(r: &mut Reader<'_>) -> Result<u8, Error> {
+    let addr = r.u8()?;
+    ensure(addr <= 0x7f, r.id(), "addr")?;
+    Ok(addr)
+}
+
+fn sonar_cm(r: &mut Reader<'_>) -> Result<u16, Error> {
+    let cm = r.u16()?;
+    let ok = cm < SONAR_CM_LIMIT || (SONAR_NO_ECHO..=SONAR_STALE).contains(&cm);
+    ensure(ok, r.id(), "cm")?;
+    Ok(cm)
+}
+
+fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<ReportRef<'a>, Error> {
+    let rid = r.id();
+    Ok(match rid {
+        id::SERIAL_LOOP_BACK => Report::LoopBack { byte: r.u8()? },
+        id::DIGITAL => Report::Digital {
+            pin: r.pin("pin")?,
+            high: r.flag("value")?,
+        },
+        id::ANALOG => {
+            let pin = r.u8()?;
+            // mirte 1.3 builds before the GPIO renumbering still send ADC
+            // numbers, and the version was not bumped.
+            let ok = analog_pin_ok(dialect, pin) || analog_pin_ok(Dialect::Mirte12, pin);
+            ensure(ok, rid, "pin")?;
+            let value = r.u16()?;
+            ensure(value <= 4095, rid, "value")?;
+            Report::Analog { pin, value }
+        }
+        id::FIRMWARE => Report::FirmwareVersion {
+            major: r.u8()?,
+            minor: r.u8()?,
+        },
+        id::UNIQUE_ID => Report::UniqueId { id: r.array()? },
+        id::I2C_WRITE if dialect.is_mirte() => Report::I2cWrite {
+            port: port(r)?,
+            msg_id: r.u8()?,
+            result: r.i8()?,
+        },
+        id::I2C_WRITE => Report::I2cWriteFailed {
+            port: port(r)?,
+            addr: i2c_addr(r)?,
+            stale: r.u8()?,
+        },
+        id::I2C_READ_FAILED => Report::I2cReadFailed {
+            port: port(r)?,
+            addr: i2c_addr(r)?,
+            stale: r.u8()?,
+        },
+        id::I2C_READ if dialect.is_mirte() => {
+            let (port, msg_id, reg) = (port(r)?, r.u8()?, r.u8()?);
+            let n = r.u8()?;
+            ensure(r.u8()? == 0, rid, "pad")?;
+            Report::I2cRead {
+                port,
+                msg_id,
+                reg,
+                data: r.take(usize::from(n))?,
+            }
+        }
+        id::I2C_READ => {
+            let (port, addr, reg) = (port(r)?, i2c_addr(r)?, r.u8()?);
+            let n = r.u8()?;
+            Report::I2cReadUpstream {
+                port,
+                addr,
+                reg,
+                data: r.take(usize::from(n))?,
+            }
+        }
+        id::SONAR => {
+            let trig = r.pin("trig")?;
+            Report::Sonar(match dialect {
+                Dialect::Mirte13 if r.remaining() == 3 => Sonar::WithEcho {
+                    trig,
+                    echo: r.pin("echo")?,
+                    cm: sonar_cm(r)?,
+                },
+                Dialect::Mirte13 => Sonar::TrigOnly {
+                    trig,
+                    cm: sonar_cm(r)?,
+                },
+                Dialect::Mirte12 => {
+                    let m = r.u8()?;
+                    let cm = r.u8()?;
+                    ensure(cm < 100, rid, "cm")?;
+                    Sonar::MetresCm { trig, m, cm }
+                }
+                Dialect::Upstream11 => {
+                    let cm = r.u8()?;
+                    let hundredths = r.u8()?;
+                    ensure(hundredths < 100, rid, "hundredths")?;
+                    Sonar::CmHundredths {
+                        trig,
+                        cm,
+                        hundredths,
+                    }
+                }
+            })
+        }
+        id::DHT => {
+            let pin = r.pin("pin")?;
+            let humidity = r.u8()?;
+            let humidity_hundredths = r.u8()?;
+            ensure(humidity_hundredths < 100, rid, "humidity_hundredths")?;
+            let temp = r.i8()?;
+            let temp_hundredths = r.i8()?;
+            let same_sign = !(temp > 0 && temp_hundredths < 0 || temp < 0 && temp_hundredths > 0);
+            ensure(
+                (-99..=99).contains(&temp_hundredths) && same_sign,
+                rid,
+                "temp_hundredths",
+            )?;
+            Report::Dht {
+                pin,
+                humidity,
+                humidity_hundredths,
+                temp,
+                temp_hundredths,
+            }
+        }
+        id::SPI => {
+            let port = port(r)?;
+            let n = r.u8()?;
+            Report::Spi {
+                port,
+                data: r.take(usize::from(n))?,
+            }
+        }
+        id::ENCODER => {
+            let pin = r.pin("pin")?;
+            let steps = r.i8()?;
+            ensure(steps != 0, rid, "steps")?;
+            Report::Encoder { pin, steps }
+        }
+        id::SENSOR => {
+            let sensor_num = r.u8()?;
+            let sensor_type = SensorType::from_u8(r.u8()?).ok_or(Error::OutOfRange {
+                id: rid,
+                field: "sensor_type",
+            })?;
+            Report::Sensor {
+                sensor_num,
+                reading: SensorReading::parse(r, sensor_type)?,
+            }
+        }
+        id::SENSOR_MAIN => {
+            ensure(r.u8()? == 0, rid, "subtype")?;
+            Report::SensorSupported {
+                sensor_type: r.u8()?,
+                supported: r.flag("supported")?,
+            }
+        }
+        id::PONG => {
+            let counter = r.u8()?;
+            let boot_id = r.u8()?;
+            ensure(boot_id < 100, rid, "boot_id")?;
+            Report::Pong { counter, boot_id }
+        }
+        id::MODULE_MAIN => {
+            ensure(r.u8()? == 0, rid, "subtype")?;
+            Report::ModuleSupported {
+                module_type: r.u8()?,
+                supported: r.flag("supported")?,
+            }
+        }
+        id::MODULE => Report::Module {
+            module_num: r.u8()?,
+            report: ModuleReport::parse(r)?,
+        },
+        id::GET_ID => Report::Id { id: r.u8()? },
+        id::SET_ID => Report::IdSet { id: r.u8()? },
+        id::FEATURE_CHECK => Report::Feature {
+            msg_type: r.u8()?,
+            supported: r.flag("ok")?,
+            // `report_len_ok` has checked the extras' length.
+            extras: r.rest(),
+        },
+        id::DEBUG_PRINT => Report::Debug {
+            id: r.u8()?,
+            value: r.u16()?,
+        },
+        _ => return Err(Error::UnknownId { id: rid }),
+    })
+}

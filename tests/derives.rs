@@ -1,0 +1,663 @@
+//! The optional `serde` and `defmt` derives on the protocol-neutral types.
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_round_trips_reports_and_counters() {
+    use robowire::omnitiles::{Decoder, Framing};
+    use robowire::{EncodeError, Framed, Rejected, Stats};
+
+    let mut decoder = Decoder::new(Framing::commands());
+    decoder
+        .feed(&[0x00, 0xa5, 0x50, 0x51, 0xa5, 0x50, 0x50])
+        .for_each(drop);
+    let stats = decoder.stats();
+    let json = serde_json::to_string(&stats).unwrap();
+    assert_eq!(
+        json,
+        r#"{"bytes":7,"frames":1,"frame_bytes":3,"skipped":4,"checksum_errors":1,"rejected":0,"malformed":0,"superseded":0}"#
+    );
+    assert_eq!(serde_json::from_str::<Stats>(&json).unwrap(), stats);
+
+    let framed = Framed {
+        offset: 4,
+        len: 3,
+        message: 7u8,
+    };
+    let json = serde_json::to_string(&framed).unwrap();
+    assert_eq!(json, r#"{"offset":4,"len":3,"message":7}"#);
+    assert_eq!(serde_json::from_str::<Framed<u8>>(&json).unwrap(), framed);
+
+    let rejected = Rejected {
+        offset: 1,
+        error: 9u8,
+    };
+    let json = serde_json::to_string(&rejected).unwrap();
+    assert_eq!(
+        serde_json::from_str::<Rejected<u8>>(&json).unwrap(),
+        rejected
+    );
+
+    let error = EncodeError::BufferTooSmall {
+        needed: 6,
+        available: 2,
+    };
+    assert_eq!(
+        serde_json::to_string(&error).unwrap(),
+        r#"{"BufferTooSmall":{"needed":6,"available":2}}"#
+    );
+}
+
+/// Compiles only if every type here implements `defmt::Format`.
+#[cfg(feature = "defmt")]
+#[test]
+fn defmt_formats_reports_and_counters() {
+    fn format<T: defmt::Format>() -> &'static str {
+        core::any::type_name::<T>()
+    }
+    let names = [
+        format::<robowire::Stats>(),
+        format::<robowire::Framed<u8>>(),
+        format::<robowire::Rejected<u8>>(),
+        format::<robowire::EncodeError>(),
+        format::<robowire::Check<u8>>(),
+        format::<robowire::Frame<'static, u8>>(),
+        format::<robowire::FrameBuf<8>>(),
+        format::<robowire::omnitiles::Motor>(),
+        format::<robowire::omnitiles::Command>(),
+        format::<robowire::omnitiles::Layout>(),
+        format::<robowire::omnitiles::Layouts>(),
+        format::<robowire::omnitiles::Imu>(),
+        format::<robowire::omnitiles::Telemetry>(),
+        format::<robowire::omnitiles::Packet>(),
+        format::<robowire::omnitiles::Error>(),
+        format::<robowire::omnitiles::Framing>(),
+        format::<robowire::omnitiles::DatagramDecoder>(),
+        format::<robowire::omnitiles::Datagram<'static, 'static>>(),
+        format::<robowire::pixy2::Block>(),
+        format::<robowire::pixy2::BlockIter<'static>>(),
+        format::<robowire::pixy2::Blocks<'static>>(),
+        format::<robowire::pixy2::BlocksBuf>(),
+        format::<robowire::pixy2::Error>(),
+        format::<robowire::pixy2::Malformed>(),
+        format::<robowire::pixy2::DeviceError>(),
+        format::<robowire::pixy2::Vector>(),
+        format::<robowire::pixy2::IntersectionLine>(),
+        format::<robowire::pixy2::Intersection>(),
+        format::<robowire::pixy2::Barcode>(),
+        format::<robowire::pixy2::Section<'static>>(),
+        format::<robowire::pixy2::Sections<'static>>(),
+        format::<robowire::pixy2::Elements<'static, robowire::pixy2::Vector>>(),
+        format::<robowire::pixy2::FeatureIter<'static, robowire::pixy2::Barcode>>(),
+        format::<robowire::pixy2::Features<'static>>(),
+        format::<robowire::pixy2::FeaturesBuf>(),
+        format::<robowire::pixy2::Host>(),
+        format::<robowire::pixy2::Device>(),
+        format::<robowire::pixy2::Any>(),
+        format::<robowire::pixy2::Framing<robowire::pixy2::Host>>(),
+        format::<robowire::pixy2::Form>(),
+        format::<robowire::pixy2::Packet<robowire::pixy2::Request>>(),
+        format::<robowire::pixy2::Message<'static>>(),
+        format::<robowire::pixy2::MessageBuf>(),
+        format::<robowire::pixy2::PairError>(),
+        format::<robowire::pixy2::ProgSwitch>(),
+        format::<robowire::pixy2::ProgName>(),
+        format::<robowire::pixy2::ChangeProg>(),
+        format::<robowire::pixy2::GetResolution>(),
+        format::<robowire::pixy2::GetVersion>(),
+        format::<robowire::pixy2::SetCameraBrightness>(),
+        format::<robowire::pixy2::SetServos>(),
+        format::<robowire::pixy2::SetLed>(),
+        format::<robowire::pixy2::SetLamp>(),
+        format::<robowire::pixy2::GetFps>(),
+        format::<robowire::pixy2::GetBlocks>(),
+        format::<robowire::pixy2::GetFeatures>(),
+        format::<robowire::pixy2::SetMode>(),
+        format::<robowire::pixy2::SetVector>(),
+        format::<robowire::pixy2::SetNextTurn>(),
+        format::<robowire::pixy2::SetDefaultTurn>(),
+        format::<robowire::pixy2::ReverseVector>(),
+        format::<robowire::pixy2::GetRgb>(),
+        format::<robowire::pixy2::Request>(),
+        format::<robowire::pixy2::FirmwareType>(),
+        format::<robowire::pixy2::Version>(),
+        format::<robowire::pixy2::Resolution>(),
+        format::<robowire::pixy2::Rgb>(),
+        format::<robowire::pixy2::Response<'static>>(),
+        format::<robowire::pixy2::ResponseBuf>(),
+        format::<robowire::telemetrix::Pull>(),
+        format::<robowire::telemetrix::PinMode>(),
+        format::<robowire::telemetrix::PwmPin>(),
+        format::<robowire::telemetrix::PwmPins>(),
+        format::<robowire::telemetrix::ModifyReporting>(),
+        format::<robowire::telemetrix::Rgb>(),
+        format::<robowire::telemetrix::EncoderKind>(),
+        format::<robowire::telemetrix::Pulls>(),
+        format::<robowire::telemetrix::CommandRef<'static>>(),
+        format::<robowire::telemetrix::OwnedCommand>(),
+        format::<robowire::telemetrix::Dialect>(),
+        format::<robowire::telemetrix::Error>(),
+        format::<robowire::telemetrix::ReportFraming>(),
+        format::<robowire::telemetrix::CommandFraming>(),
+        format::<robowire::telemetrix::Payload<4>>(),
+        format::<robowire::telemetrix::List<u16, 8>>(),
+        format::<robowire::telemetrix::ModuleType>(),
+        format::<robowire::telemetrix::Pca9685Config>(),
+        format::<robowire::telemetrix::ModuleInit<&'static [u8]>>(),
+        format::<robowire::telemetrix::ModuleNew<&'static [u8]>>(),
+        format::<robowire::telemetrix::ServoMove>(),
+        format::<robowire::telemetrix::HiwonderCommand>(),
+        format::<robowire::telemetrix::Pca9685Channel>(),
+        format::<robowire::telemetrix::Pca9685Command>(),
+        format::<robowire::telemetrix::Ssd1306Command>(),
+        format::<robowire::telemetrix::RelayCommand>(),
+        format::<robowire::telemetrix::ServoPosition>(),
+        format::<robowire::telemetrix::ServoPositions<&'static [u8]>>(),
+        format::<robowire::telemetrix::Ssd1306Done>(),
+        format::<robowire::telemetrix::ModuleReport<&'static [u8]>>(),
+        format::<robowire::telemetrix::SonarReading>(),
+        format::<robowire::telemetrix::Sonar>(),
+        format::<robowire::telemetrix::ReportRef<'static>>(),
+        format::<robowire::telemetrix::OwnedReport>(),
+        format::<robowire::telemetrix::SensorType>(),
+        format::<robowire::telemetrix::SensorNew>(),
+        format::<robowire::telemetrix::SensorReading>(),
+        format::<robowire::telemetrix::InDialect<'static, robowire::telemetrix::OwnedReport>>(),
+    ];
+    assert!(names.iter().all(|n| n.starts_with("robowire::")));
+}
+
+#[cfg(all(
+    feature = "defmt",
+    any(feature = "embedded-io-07", feature = "embedded-io-async-07")
+))]
+#[test]
+fn defmt_formats_write_errors() {
+    fn format<T: defmt::Format>() -> &'static str {
+        core::any::type_name::<T>()
+    }
+    assert!(format::<robowire::io::WriteError<u8>>().contains("WriteError"));
+}
+
+/// Serialize `value` to JSON, check the text, and read it back.
+#[cfg(feature = "serde")]
+fn json_round_trip<T>(value: &T, expected: &str)
+where
+    T: serde::Serialize + serde::de::DeserializeOwned + PartialEq + core::fmt::Debug,
+{
+    let json = serde_json::to_string(value).unwrap();
+    assert_eq!(json, expected);
+    assert_eq!(&serde_json::from_str::<T>(&json).unwrap(), value);
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_engine_types() {
+    use robowire::{Check, Frame, FrameBuf};
+
+    json_round_trip(&Check::<u8>::Need(4), r#"{"Need":4}"#);
+    json_round_trip(&Check::<u8>::Reject(2), r#"{"Reject":2}"#);
+
+    let frame = Frame {
+        offset: 3,
+        raw: &[0xa5, 0x50, 0x50][..],
+        message: 1u8,
+    };
+    assert_eq!(
+        serde_json::to_string(&frame).unwrap(),
+        r#"{"offset":3,"raw":[165,80,80],"message":1}"#
+    );
+
+    let buf = FrameBuf::<8>::encode(&robowire::omnitiles::Command::Ping).unwrap();
+    json_round_trip(&buf, "[165,80,80]");
+    json_round_trip(&FrameBuf::<8>::new(), "[]");
+    let too_long = serde_json::from_str::<FrameBuf<2>>("[165,80,80]").unwrap_err();
+    assert!(
+        too_long.to_string().contains("at most 2 bytes"),
+        "{too_long}"
+    );
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_omnitiles_commands_and_config() {
+    use robowire::omnitiles::{Command, Error, Framing, Layout, Layouts, Motor, Packet};
+
+    json_round_trip(
+        &Packet::Command(Command::Extend {
+            motor: Motor::M1,
+            speed: 200,
+        }),
+        r#"{"Command":{"Extend":{"motor":"M1","speed":200}}}"#,
+    );
+    json_round_trip(&Command::Ping, r#""Ping""#);
+    json_round_trip(
+        &Command::BaseVelocity {
+            vx: -127,
+            vy: 0,
+            omega: 5,
+        },
+        r#"{"BaseVelocity":{"vx":-127,"vy":0,"omega":5}}"#,
+    );
+    json_round_trip(&Layout::UwbTof17, r#""uwbtof17""#);
+    json_round_trip(&Layouts::DOCUMENTED, "23");
+    json_round_trip(&Layouts::NONE, "0");
+    json_round_trip(
+        &Framing::telemetry(Layouts::only(Layout::Spi45)),
+        r#"{"commands":false,"layouts":8}"#,
+    );
+    json_round_trip(
+        &Error::Checksum {
+            expected: 0xf8,
+            found: 0xf7,
+        },
+        r#"{"Checksum":{"expected":248,"found":247}}"#,
+    );
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_omnitiles_refuses_undefined_layout_bits() {
+    use robowire::omnitiles::{Framing, Layouts};
+
+    assert_eq!(serde_json::from_str::<Layouts>("31").unwrap(), Layouts::ALL);
+    for bits in ["32", "255", "33"] {
+        let err = serde_json::from_str::<Layouts>(bits).unwrap_err();
+        assert!(err.to_string().contains("telemetry layouts"), "{err}");
+    }
+    assert!(serde_json::from_str::<Layouts>("256").is_err());
+    assert!(serde_json::from_str::<Framing>(r#"{"commands":true,"layouts":64}"#).is_err());
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_omnitiles_telemetry() {
+    use robowire::omnitiles::{Imu, Layout, Packet, Telemetry};
+    use robowire::FrameBuf;
+
+    // A BLE frame with finite IMU values (JSON has no NaN), decoded from its bytes.
+    let mut sent = Telemetry::empty(Layout::Ble53);
+    sent.m1_pos = Some(2000);
+    sent.uwb = Some([Some(1200), None, Some(800), None]);
+    sent.imu = Some(Imu::from_array([0.5, -0.25, 9.75, 0.0, 0.125, -1.5]));
+    sent.m1_adcs = Some([1, 2, 3, 4]);
+    sent.m2_adcs = Some([5, 6]);
+    let frame = FrameBuf::<64>::encode(&sent).unwrap();
+    let telemetry = Telemetry::from_frame(&frame).unwrap();
+    assert_eq!(telemetry, sent);
+    assert_eq!(telemetry.tof, Some(None));
+    json_round_trip(
+        &Packet::Telemetry(telemetry),
+        concat!(
+            r#"{"Telemetry":{"layout":"ble53","m1_pos":2000,"m2_pos":null,"#,
+            r#""uwb":[1200,null,800,null],"tof":null,"#,
+            r#""imu":{"ax":0.5,"ay":-0.25,"az":9.75,"gx":0.0,"gy":0.125,"gz":-1.5},"#,
+            r#""m1_adcs":[1,2,3,4],"m2_adcs":[5,6]}}"#
+        ),
+    );
+
+    // `tof: null` is "not carried" where the layout has no ToF field.
+    let short = Telemetry::from_frame(&[0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x22]).unwrap();
+    assert_eq!(short.tof, None);
+    json_round_trip(
+        &short,
+        r#"{"layout":"pos7","m1_pos":2000,"m2_pos":1000,"uwb":null,"tof":null,"imu":null,"m1_adcs":null,"m2_adcs":null}"#,
+    );
+    let with_tof = Telemetry {
+        tof: Some(Some(310)),
+        ..Telemetry::empty(Layout::UwbTof17)
+    };
+    json_round_trip(
+        &with_tof,
+        r#"{"layout":"uwbtof17","m1_pos":null,"m2_pos":null,"uwb":[null,null,null,null],"tof":310,"imu":null,"m1_adcs":null,"m2_adcs":null}"#,
+    );
+
+    // Field groups the layout does not carry (or lacks) are refused.
+    let imu_in_pos7 = r#"{"layout":"pos7","m1_pos":1,"m2_pos":2,"uwb":null,"tof":null,
+        "imu":{"ax":0.0,"ay":0.0,"az":0.0,"gx":0.0,"gy":0.0,"gz":0.0},"m1_adcs":null,"m2_adcs":null}"#;
+    let err = serde_json::from_str::<Telemetry>(imu_in_pos7).unwrap_err();
+    assert!(err.to_string().contains("do not match the layout"), "{err}");
+    let ble_without_adcs = r#"{"layout":"ble53","m1_pos":1,"m2_pos":2,"uwb":[1,2,3,4],"tof":5,
+        "imu":{"ax":0.0,"ay":0.0,"az":0.0,"gx":0.0,"gy":0.0,"gz":0.0},"m1_adcs":null,"m2_adcs":null}"#;
+    let err = serde_json::from_str::<Telemetry>(ble_without_adcs).unwrap_err();
+    assert!(err.to_string().contains("do not match the layout"), "{err}");
+
+    // NaN becomes null in JSON and does not come back.
+    let nan = Telemetry {
+        imu: Some(Imu::from_array([f32::NAN, 0.0, 0.0, 0.0, 0.0, 0.0])),
+        ..Telemetry::empty(Layout::Spi45)
+    };
+    let json = serde_json::to_string(&nan).unwrap();
+    assert!(json.contains(r#""ax":null"#), "{json}");
+    assert!(serde_json::from_str::<Telemetry>(&json).is_err());
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_pixy2_requests() {
+    use robowire::pixy2::{
+        ChangeProg, Form, GetBlocks, Host, MessageBuf, Packet, ProgName, Request, SetServos,
+    };
+
+    json_round_trip(
+        &Packet::new(
+            Form::NoChecksum,
+            Request::from(GetBlocks {
+                sigmap: GetBlocks::ALL,
+                max_blocks: 4,
+            }),
+        ),
+        r#"{"form":"NoChecksum","body":{"GetBlocks":{"sigmap":255,"max_blocks":4}}}"#,
+    );
+    json_round_trip(
+        &MessageBuf::Request(Request::from(SetServos { pan: 500, tilt: 20 })),
+        r#"{"Request":{"SetServos":{"pan":500,"tilt":20}}}"#,
+    );
+
+    // A program name is its payload bytes, padding included.
+    let line = Request::from(ChangeProg(ProgName::LINE_TRACKING));
+    let json = serde_json::to_string(&line).unwrap();
+    assert!(
+        json.starts_with(r#"{"ChangeProg":[108,105,110,101,95,"#),
+        "{json}"
+    );
+    assert_eq!(json.matches(',').count(), 32, "33 bytes: {json}");
+    assert_eq!(serde_json::from_str::<Request>(&json).unwrap(), line);
+    let short = ProgName::from_payload(b"video").unwrap();
+    json_round_trip(&short, "[118,105,100,101,111]");
+    let too_long = format!("[{}]", ["120"; 65].join(","));
+    let err = serde_json::from_str::<ProgName>(&too_long).unwrap_err();
+    assert!(err.to_string().contains("at most 64 bytes"), "{err}");
+
+    json_round_trip(
+        &robowire::pixy2::Framing::<Host>::new().checksum_only(),
+        r#"{"checksum_only":true}"#,
+    );
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_pixy2_owned_blocks_response() {
+    use robowire::pixy2::{self, Block, BlocksBuf, Packet, Response, ResponseBuf, MAX_BLOCKS};
+
+    let bytes = [
+        0xaf, 0xc1, 0x21, 0x0e, 0xb7, 0x01, 0x01, 0x00, 0x64, 0x00, 0x32, 0x00, 0x14, 0x00, 0x0a,
+        0x00, 0x00, 0x00, 0x03, 0xff,
+    ];
+    let mut decoder = pixy2::host_decoder();
+    let owned: Vec<Packet<ResponseBuf>> = decoder
+        .feed(&bytes)
+        .map(|event| event.unwrap().message)
+        .collect();
+    assert_eq!(owned.len(), 1);
+    let block_json =
+        r#"{"signature":1,"x":100,"y":50,"width":20,"height":10,"angle":0,"index":3,"age":255}"#;
+    json_round_trip(
+        &owned[0],
+        &format!(r#"{{"form":"Checksum","body":{{"Blocks":[{block_json}]}}}}"#),
+    );
+
+    // The borrowed response, straight from the frame, serializes as the owned one.
+    let mut input = &bytes[..];
+    let mut fresh = pixy2::host_decoder();
+    let frame = fresh.decode(&mut input).unwrap().unwrap();
+    let view: Response<'_> = frame.message.body;
+    assert_eq!(
+        serde_json::to_string(&view).unwrap(),
+        serde_json::to_string(&owned[0].body).unwrap()
+    );
+
+    // At most 18 blocks.
+    let full = BlocksBuf::from_blocks(&[Block::default(); MAX_BLOCKS]).unwrap();
+    let json = serde_json::to_string(&full).unwrap();
+    assert_eq!(serde_json::from_str::<BlocksBuf>(&json).unwrap(), full);
+    let nineteen = format!("[{block_json},{}]", &json[1..json.len() - 1]);
+    let err = serde_json::from_str::<BlocksBuf>(&nineteen).unwrap_err();
+    assert!(err.to_string().contains("at most 18"), "{err}");
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_pixy2_owned_features_response() {
+    use robowire::pixy2::{
+        Barcode, DeviceError, Error, Features, FeaturesBuf, Intersection, IntersectionLine,
+        Malformed, PairError, Response, ResponseBuf, Vector,
+    };
+
+    let vector = Vector {
+        x0: 10,
+        y0: 51,
+        x1: 40,
+        y1: 2,
+        index: 7,
+        flags: 0,
+    };
+    let barcode = Barcode {
+        x: 30,
+        y: 20,
+        flags: 0,
+        code: 5,
+    };
+    let features = FeaturesBuf::from_parts(&[vector], &[], &[barcode]).unwrap();
+    json_round_trip(
+        &ResponseBuf::Features(features),
+        r#"{"Features":[1,6,10,51,40,2,7,0,4,4,30,20,0,5]}"#,
+    );
+    assert_eq!(
+        serde_json::to_string(&Response::Features(features.view())).unwrap(),
+        r#"{"Features":[1,6,10,51,40,2,7,0,4,4,30,20,0,5]}"#
+    );
+
+    // Intersections and sections of unknown types keep every byte.
+    let mut slots = [IntersectionLine::default(); 6];
+    slots[0] = IntersectionLine {
+        index: 1,
+        reserved: 9,
+        angle: -90,
+    };
+    let crossing = Intersection {
+        x: 39,
+        y: 20,
+        n: 1,
+        reserved: 0,
+        slots,
+    };
+    let with_crossing = FeaturesBuf::from_parts(&[vector], &[crossing], &[]).unwrap();
+    let mut payload = with_crossing.view().as_bytes().to_vec();
+    payload.extend_from_slice(&[0x08, 0x02, 0xaa, 0xbb]);
+    let unknown = FeaturesBuf::from_payload(&payload).unwrap();
+    let json = serde_json::to_string(&unknown).unwrap();
+    let back = serde_json::from_str::<FeaturesBuf>(&json).unwrap();
+    assert_eq!(back, unknown);
+    assert_eq!(back.view().intersections().next(), Some(crossing));
+
+    // Payloads a view would refuse are refused.
+    for bad in [
+        "[2,3,0,0,0]", // not whole intersections
+        "[1,6,0,0,0]", // section past the end
+        "[2,28,0,0,7,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0]", // 7 lines
+    ] {
+        assert!(serde_json::from_str::<FeaturesBuf>(bad).is_err(), "{bad}");
+    }
+    let too_long = format!("[{}]", ["0"; 256].join(","));
+    let err = serde_json::from_str::<FeaturesBuf>(&too_long).unwrap_err();
+    assert!(err.to_string().contains("at most 255 bytes"), "{err}");
+
+    // A borrowed view deserializes only from borrowed bytes, never from JSON's array.
+    assert!(serde_json::from_str::<Features<'_>>("[1,6,10,51,40,2,7,0]").is_err());
+
+    json_round_trip(
+        &ResponseBuf::Error(DeviceError::Unknown(-9)),
+        r#"{"Error":{"Unknown":-9}}"#,
+    );
+    json_round_trip(
+        &Error::Malformed {
+            packet_type: 0x31,
+            what: Malformed::IntersectionLines { n: 7 },
+        },
+        r#"{"Malformed":{"packet_type":49,"what":{"IntersectionLines":{"n":7}}}}"#,
+    );
+    json_round_trip(
+        &PairError::Device(DeviceError::Busy),
+        r#"{"Device":"Busy"}"#,
+    );
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_telemetrix_reports_with_payloads() {
+    use robowire::telemetrix::{
+        ModuleReport, OwnedReport, Report, ReportDecoder, ReportFraming, ReportRef, SensorReading,
+        ServoPositions,
+    };
+    use robowire::FrameBuf;
+
+    let sent: [ReportRef<'_>; 3] = [
+        Report::I2cRead {
+            port: 0,
+            msg_id: 5,
+            reg: 0x10,
+            data: &[0xaa, 0xbb, 0xcc][..],
+        },
+        Report::Sensor {
+            sensor_num: 1,
+            reading: SensorReading::Ina226 {
+                volts: 12.5,
+                amps: 0.25,
+            },
+        },
+        Report::Module {
+            module_num: 0,
+            report: ModuleReport::HiwonderPositions(ServoPositions::from_raw(&[0, 0x2e, 0xe0][..])),
+        },
+    ];
+    let mut bytes = Vec::new();
+    for report in &sent {
+        bytes.extend_from_slice(&FrameBuf::<64>::encode(report).unwrap());
+    }
+    let mut decoder = ReportDecoder::new(ReportFraming::new());
+    let owned: Vec<OwnedReport> = decoder
+        .feed(&bytes)
+        .map(|event| event.unwrap().message)
+        .collect();
+    assert_eq!(owned.len(), 3);
+
+    let expected = [
+        r#"{"I2cRead":{"port":0,"msg_id":5,"reg":16,"data":[170,187,204]}}"#,
+        r#"{"Sensor":{"sensor_num":1,"reading":{"Ina226":{"volts":12.5,"amps":0.25}}}}"#,
+        r#"{"Module":{"module_num":0,"report":{"HiwonderPositions":[0,46,224]}}}"#,
+    ];
+    for ((report, borrowed), json) in owned.iter().zip(&sent).zip(expected) {
+        json_round_trip(report, json);
+        // A borrowed report serializes as its owned form does.
+        assert_eq!(serde_json::to_string(borrowed).unwrap(), json);
+    }
+    // A borrowed report cannot borrow its bytes from JSON's array of numbers.
+    assert!(serde_json::from_str::<ReportRef<'_>>(expected[0]).is_err());
+
+    // More bytes than an owned report's payload holds (254) are refused.
+    let too_long = format!(
+        r#"{{"Spi":{{"port":0,"data":[{}]}}}}"#,
+        ["1"; 255].join(",")
+    );
+    let err = serde_json::from_str::<OwnedReport>(&too_long).unwrap_err();
+    assert!(err.to_string().contains("at most 254 items"), "{err}");
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serde_telemetrix_commands_and_config() {
+    use robowire::telemetrix::{
+        Command, CommandRef, Dialect, Error, HiwonderCommand, List, OwnedCommand, Payload, PinMode,
+        Pull, ReportFraming, ServoMove,
+    };
+
+    json_round_trip(
+        &OwnedCommand::SetPinMode {
+            pin: 4,
+            mode: PinMode::DigitalInput {
+                pull: Pull::Up,
+                report: true,
+            },
+        },
+        r#"{"SetPinMode":{"pin":4,"mode":{"DigitalInput":{"pull":"Up","report":true}}}}"#,
+    );
+    let write: OwnedCommand = Command::I2cWrite {
+        port: 1,
+        addr: 0x3c,
+        msg_id: 9,
+        no_stop: 0,
+        data: Payload::from_slice(&[0x00, 0xaf]).unwrap(),
+    };
+    let json = r#"{"I2cWrite":{"port":1,"addr":60,"msg_id":9,"no_stop":0,"data":[0,175]}}"#;
+    json_round_trip(&write, json);
+    let borrowed: CommandRef<'_> = write.as_ref();
+    assert_eq!(serde_json::to_string(&borrowed).unwrap(), json);
+    assert!(serde_json::from_str::<CommandRef<'_>>(json).is_err());
+
+    let angle = HiwonderCommand::SetAngle(
+        List::from_slice(&[ServoMove {
+            idx: 0,
+            centideg: 12000,
+            time_ms: 500,
+        }])
+        .unwrap(),
+    );
+    json_round_trip(
+        &angle,
+        r#"{"SetAngle":[{"idx":0,"centideg":12000,"time_ms":500}]}"#,
+    );
+    let data = OwnedCommand::module_data(0, &angle).unwrap();
+    let json = serde_json::to_string(&data).unwrap();
+    assert_eq!(serde_json::from_str::<OwnedCommand>(&json).unwrap(), data);
+
+    // Lists refuse more items than they hold.
+    let six = format!(
+        "[{}]",
+        [r#"{"idx":0,"centideg":0,"time_ms":0}"#; 6].join(",")
+    );
+    let err = serde_json::from_str::<List<ServoMove, 5>>(&six).unwrap_err();
+    assert!(err.to_string().contains("at most 5 items"), "{err}");
+    let data_29 = format!(
+        r#"{{"ModuleData":{{"module_num":0,"data":[{}]}}}}"#,
+        ["7"; 29].join(",")
+    );
+    assert!(serde_json::from_str::<OwnedCommand>(&data_29).is_err());
+
+    json_round_trip(
+        &ReportFraming::new()
+            .with_dialect(Dialect::Upstream11)
+            .lenient(),
+        r#"{"dialect":"Upstream11","lenient":true}"#,
+    );
+    // Serialize only: the field name is a `&'static str`.
+    assert_eq!(
+        serde_json::to_string(&Error::OutOfRange {
+            id: 1,
+            field: "pin"
+        })
+        .unwrap(),
+        r#"{"OutOfRange":{"id":1,"field":"pin"}}"#
+    );
+}
+
+/// Borrowed views deserialize from formats that hand out borrowed bytes.
+#[cfg(feature = "serde")]
+#[test]
+fn serde_borrowed_views_borrow_bytes() {
+    use robowire::pixy2::{Features, FeaturesBuf, Vector};
+    use serde::de::value::{BorrowedBytesDeserializer, Error};
+    use serde::Deserialize;
+
+    fn borrows<'a, T: Deserialize<'a>>() {}
+    borrows::<robowire::Frame<'_, u8>>();
+    borrows::<robowire::telemetrix::CommandRef<'_>>();
+    borrows::<robowire::telemetrix::ReportRef<'_>>();
+
+    let owned = FeaturesBuf::from_parts(&[Vector::default()], &[], &[]).unwrap();
+    let bytes = owned.view().as_bytes();
+    let view = Features::deserialize(BorrowedBytesDeserializer::<Error>::new(bytes)).unwrap();
+    assert_eq!(view, owned.view());
+    assert!(core::ptr::eq(view.as_bytes(), bytes));
+    let bad = Features::deserialize(BorrowedBytesDeserializer::<Error>::new(&[1, 6, 0]));
+    assert!(bad.is_err());
+}
