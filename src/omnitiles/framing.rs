@@ -339,3 +339,29 @@ pub(crate) fn parse_frame(frame: &[u8]) -> Result<Packet, Error> {
         .map(Packet::Command)
         .ok_or(Error::UnknownId { id })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{checksum, sum8};
+
+    #[test]
+    fn sum8_equals_the_bytewise_sum() {
+        // Lengths across the 8-byte words, the remainder and the 128-word
+        // lane flush, over bytes that make the lanes carry.
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let bytes: [u8; 1100] = core::array::from_fn(|_| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 24) as u8 | 0x80
+        });
+        let lengths = (0..=80).chain([127 * 8, 128 * 8, 128 * 8 + 1, 129 * 8 + 7, 1100]);
+        for len in lengths {
+            for start in [0, 1, 3] {
+                let slice = &bytes[start..start + len.min(1100 - start)];
+                assert_eq!(sum8(slice), checksum(slice), "len {len} from {start}");
+            }
+        }
+        assert_eq!(sum8(&[0xff; 1024]), (1024u32 * 0xff % 256) as u8);
+    }
+}
