@@ -318,15 +318,20 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
     /// all of `input` has been taken (a trailing partial frame is kept inside).
     ///
     /// Call it in a loop, `while let Some(event) = decoder.decode(&mut input)`.
+    // Inlined into the caller's loop: the event is then built where the caller
+    // reads it, not returned through memory (see `emit`).
+    #[inline(always)]
     pub fn decode<'a, 'i: 'a>(
         &'a mut self,
         input: &mut &'i [u8],
     ) -> Option<Event<'a, F::Message<'a>, F::Error>> {
         self.apply_pending_drop();
-        if self.len > 0 {
-            return self.decode_buffered(input);
-        }
-        self.decode_in_place(input)
+        let step = if self.len > 0 {
+            self.step_buffered(input)
+        } else {
+            self.step_in_place(input)
+        };
+        self.emit(step)
     }
 
     /// Feed one byte (for interrupt handlers). The byte is always taken. It
@@ -348,7 +353,8 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         // `len < N` holds between calls: a full buffer is always resolved.
         self.buf[self.len] = byte;
         self.len += 1;
-        self.decode_buffered(&mut &[][..])
+        let step = self.step_buffered(&mut &[][..]);
+        self.emit(step)
     }
 
     /// Collect the events that need no further input (after [`push`](Self::push)
@@ -382,23 +388,34 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             return None;
         }
         let error = match self.resolve(&self.buf[..self.len], true) {
-            Verdict::Frame(n) => return Some(self.emit_buffered(n)),
+            Verdict::Frame(n) => return self.emit(Step::Buffered(n)),
             Verdict::Need(_) => self.reject_kind(self.framing.truncated(self.len)),
             Verdict::Reject(error) => self.reject_kind(error),
             Verdict::Superseded(n) => self.supersede_kind(n),
         };
-        Some(self.reject_buffered(error))
+        let step = self.reject_buffered(error);
+        self.emit(step)
     }
 
+    #[inline(always)]
     fn apply_pending_drop(&mut self) {
         let n = self.pending_drop;
         if n > 0 {
-            self.pending_drop = 0;
-            self.buf.copy_within(n..self.len, 0);
-            self.len -= n;
-            self.buf_offset += n as u64;
-            self.realign_buffer();
+            self.drop_front(n);
         }
+    }
+
+    /// Remove the emitted frame at the front of the buffer.
+    fn drop_front(&mut self, n: usize) {
+        self.pending_drop = 0;
+        self.buf_offset += n as u64;
+        if n >= self.len {
+            self.len = 0;
+            return;
+        }
+        self.buf.copy_within(n..self.len, 0);
+        self.len -= n;
+        self.realign_buffer();
     }
 
     /// Make `buf[0]` a candidate start again after its front was removed.
@@ -414,6 +431,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
     }
 
     /// The framing's answer for a candidate, with the resync verification.
+    #[inline(always)]
     fn resolve(&self, c: &[u8], at_end: bool) -> Verdict<F::Error> {
         let n = match self.framing.check(c, at_end) {
             Check::Frame(n) if n > 0 && n <= c.len() => n,
@@ -423,6 +441,13 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         if self.synced || !F::VERIFY_AFTER_RESYNC {
             return Verdict::Frame(n);
         }
+        self.verify(c, n, at_end)
+    }
+
+    /// The resync verification of a frame of `n` bytes at the start of `c`
+    /// (out of line: a clean stream never needs it).
+    #[inline(never)]
+    fn verify(&self, c: &[u8], n: usize, at_end: bool) -> Verdict<F::Error> {
         // Verification looks at no more than the buffer could hold, so its
         // answer is the same whether the bytes arrived in one chunk or many.
         let at_end = at_end && c.len() <= N;
@@ -485,10 +510,44 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         }
     }
 
-    fn decode_in_place<'a, 'i: 'a>(
+    /// Turn a step into the event it stands for. This is the one place a
+    /// frame is parsed: the in-place and buffered paths meet here on a small
+    /// value (an offset and a slice), so the message is built once, straight
+    /// into the returned event, instead of on each path and then copied where
+    /// they join.
+    #[inline(always)]
+    fn emit<'a>(
         &'a mut self,
-        input: &mut &'i [u8],
+        step: Step<'a, F::Error>,
     ) -> Option<Event<'a, F::Message<'a>, F::Error>> {
+        let (offset, raw) = match step {
+            Step::Done => return None,
+            Step::Rejected(rejected) => return Some(Err(rejected)),
+            Step::InPlace { offset, raw } => (offset, raw),
+            Step::Buffered(n) => {
+                let offset = self.buf_offset;
+                self.need = 0;
+                self.synced = true;
+                if n >= self.len {
+                    // The frame is all the buffer holds: the buffer is empty
+                    // from now on (the event still borrows the bytes, which
+                    // nothing overwrites before the next call).
+                    self.len = 0;
+                    self.buf_offset += n as u64;
+                } else {
+                    // Later bytes stay: the frame is dropped on the next call.
+                    self.pending_drop = n;
+                }
+                (offset, &self.buf[..n])
+            }
+        };
+        Some(parse_counted(&self.framing, &mut self.stats, offset, raw))
+    }
+
+    /// No candidate is buffered: find the next one in `input` and resolve it
+    /// in place if it lies wholly inside.
+    #[inline(always)]
+    fn step_in_place<'i>(&mut self, input: &mut &'i [u8]) -> Step<'i, F::Error> {
         let data: &'i [u8] = input;
         let pos = self.framing.find_start(data);
         self.stats.skipped += pos as u64;
@@ -498,7 +557,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         if pos >= data.len() {
             self.stats.bytes += data.len() as u64;
             *input = &[];
-            return None;
+            return Step::Done;
         }
         let offset = self.stats.bytes + pos as u64;
         let candidate = &data[pos..];
@@ -507,7 +566,10 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
                 self.stats.bytes += (pos + n) as u64;
                 *input = &data[pos + n..];
                 self.synced = true;
-                return Some(self.parse(offset, &candidate[..n]));
+                return Step::InPlace {
+                    offset,
+                    raw: &candidate[..n],
+                };
             }
             Verdict::Need(n) if candidate.len() < N => {
                 // Only a frame that straddles the end of the chunk is copied.
@@ -517,7 +579,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
                 self.buf_offset = offset;
                 self.stats.bytes += data.len() as u64;
                 *input = &[];
-                return None;
+                return Step::Done;
             }
             // The framing asks for more than the buffer holds: a framing bug,
             // but never a reason to stall.
@@ -529,16 +591,13 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         self.stats.skipped += 1;
         self.stats.bytes += (pos + 1) as u64;
         *input = &data[pos + 1..];
-        Some(Err(Rejected { offset, error }))
+        Step::Rejected(Rejected { offset, error })
     }
 
     /// A candidate is buffered: add input bytes to it until it resolves.
-    fn decode_buffered<'a, 'i: 'a>(
-        &'a mut self,
-        input: &mut &'i [u8],
-    ) -> Option<Event<'a, F::Message<'a>, F::Error>> {
+    fn step_buffered<'i>(&mut self, input: &mut &'i [u8]) -> Step<'i, F::Error> {
         if self.len == 0 {
-            return self.decode_in_place(input);
+            return self.step_in_place(input);
         }
         let data: &'i [u8] = input;
         let mut stored = self.len;
@@ -560,7 +619,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             stored -= skip;
             self.len = stored;
             if stored == 0 {
-                return self.decode_in_place(input);
+                return self.step_in_place(input);
             }
         }
         let total = stored + take;
@@ -569,7 +628,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             self.len = total;
             self.stats.bytes += take as u64;
             *input = &data[take..];
-            return None;
+            return Step::Done;
         }
         match self.resolve(&self.buf[..total], false) {
             Verdict::Frame(n) => {
@@ -579,44 +638,33 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
                 // Stored bytes past the frame stay buffered (possible only
                 // after a rejection shifted the buffer).
                 self.len = n.max(stored);
-                Some(self.emit_buffered(n))
+                Step::Buffered(n)
             }
             Verdict::Need(n) if total < N => {
                 self.stats.bytes += take as u64;
                 *input = &data[take..];
                 self.len = total;
                 self.need = n.min(N);
-                None
+                Step::Done
             }
             Verdict::Need(_) => {
                 let error = self.reject_kind(self.framing.truncated(total));
-                Some(self.reject_buffered(error))
+                self.reject_buffered(error)
             }
             Verdict::Reject(error) => {
                 let error = self.reject_kind(error);
-                Some(self.reject_buffered(error))
+                self.reject_buffered(error)
             }
             Verdict::Superseded(n) => {
                 let error = self.supersede_kind(n);
-                Some(self.reject_buffered(error))
+                self.reject_buffered(error)
             }
         }
     }
 
-    /// Emit `buf[..n]` as a frame; it is dropped from the buffer on the next call.
-    fn emit_buffered(&mut self, n: usize) -> Event<'_, F::Message<'_>, F::Error> {
-        self.pending_drop = n;
-        self.need = 0;
-        self.synced = true;
-        let offset = self.buf_offset;
-        let (framing, stats) = (&self.framing, &mut self.stats);
-        let raw = &self.buf[..n];
-        parse_counted(framing, stats, offset, raw)
-    }
-
     /// Reject the buffered candidate: drop its first byte only and realign on
     /// the next candidate start among the stored bytes.
-    fn reject_buffered<'a>(&mut self, error: F::Error) -> Event<'a, F::Message<'a>, F::Error> {
+    fn reject_buffered<'i>(&mut self, error: F::Error) -> Step<'i, F::Error> {
         let offset = self.buf_offset;
         self.need = 0;
         self.synced = false;
@@ -625,7 +673,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         self.len -= 1;
         self.buf_offset += 1;
         self.realign_buffer();
-        Err(Rejected { offset, error })
+        Step::Rejected(Rejected { offset, error })
     }
 
     /// Count a rejection by its kind and hand the error back.
@@ -643,12 +691,9 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
         self.stats.superseded += 1;
         self.framing.superseded(n)
     }
-
-    fn parse<'a>(&mut self, offset: u64, raw: &'a [u8]) -> Event<'a, F::Message<'a>, F::Error> {
-        parse_counted(&self.framing, &mut self.stats, offset, raw)
-    }
 }
 
+#[inline(always)]
 fn parse_counted<'a, F: Framing>(
     framing: &F,
     stats: &mut Stats,
@@ -720,6 +765,18 @@ impl<F: Framing, const N: usize> Iterator for Flush<'_, F, N> {
 
 /// The engine's decision for a candidate: the framing's, refined by the resync
 /// verification.
+/// What one step of decoding found, before any frame is parsed.
+enum Step<'a, E> {
+    /// Every byte offered was taken; nothing to report yet.
+    Done,
+    /// A candidate was rejected.
+    Rejected(Rejected<E>),
+    /// A frame wholly inside the caller's input.
+    InPlace { offset: u64, raw: &'a [u8] },
+    /// A frame of this many bytes at the front of the internal buffer.
+    Buffered(usize),
+}
+
 enum Verdict<E> {
     Need(usize),
     Frame(usize),

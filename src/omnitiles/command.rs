@@ -99,7 +99,33 @@ pub enum Command {
 }
 
 /// Payload length of a command id, or `None` if the id is no command.
+#[inline]
 pub const fn payload_len(id: u8) -> Option<usize> {
+    // One table load instead of a chain of comparisons on the hot path.
+    match PAYLOAD_LEN[id as usize] {
+        NOT_A_COMMAND => None,
+        n => Some(n as usize),
+    }
+}
+
+/// [`PAYLOAD_LEN`] entry of an id that is no command.
+const NOT_A_COMMAND: u8 = u8::MAX;
+
+/// Payload length by id, [`NOT_A_COMMAND`] for ids that are no command.
+const PAYLOAD_LEN: [u8; 256] = {
+    let mut table = [NOT_A_COMMAND; 256];
+    let mut id = 0;
+    while id < 256 {
+        if let Some(n) = command_payload_len(id as u8) {
+            table[id] = n as u8;
+        }
+        id += 1;
+    }
+    table
+};
+
+/// The command table (spec §3) that [`PAYLOAD_LEN`] is built from.
+const fn command_payload_len(id: u8) -> Option<usize> {
     match id {
         id::M1_EXTEND | id::M1_RETRACT | id::M1_SET_POSITION => Some(1),
         id::M2_EXTEND | id::M2_RETRACT | id::M2_SET_POSITION => Some(1),

@@ -154,12 +154,67 @@ const fn offsets(layout: Layout) -> Offsets {
 /// Bytes the M1 ADC channels take; M2's follow them.
 const M1_ADCS_LEN: usize = 8;
 
-fn u16_at(frame: &[u8], at: usize) -> u16 {
+#[inline(always)]
+fn u16_at<const L: usize>(frame: &[u8; L], at: usize) -> u16 {
     u16::from_le_bytes([frame[at], frame[at + 1]])
 }
 
-fn reading_at(frame: &[u8], at: usize) -> Option<u16> {
+#[inline(always)]
+fn reading_at<const L: usize>(frame: &[u8; L], at: usize) -> Option<u16> {
     Some(u16_at(frame, at)).filter(|&v| v != NO_READING)
+}
+
+#[inline(always)]
+fn f32_at<const L: usize>(frame: &[u8; L], at: usize) -> f32 {
+    f32::from_bits(u32::from_le_bytes([
+        frame[at],
+        frame[at + 1],
+        frame[at + 2],
+        frame[at + 3],
+    ]))
+}
+
+/// Read a frame of `layout`, which is `L` bytes long. Inlined per layout so
+/// that `offsets(layout)` folds to constants.
+#[inline(always)]
+fn parse_fixed<const L: usize>(layout: Layout, frame: &[u8]) -> Telemetry {
+    let padded: [u8; L];
+    let frame: &[u8; L] = match frame.first_chunk::<L>() {
+        Some(frame) => frame,
+        // Framing only passes frames of the layout's length; a shorter slice
+        // reads as zero-padded rather than panicking.
+        None => {
+            padded = zero_padded(frame);
+            &padded
+        }
+    };
+    let at = offsets(layout);
+    Telemetry {
+        layout,
+        m1_pos: reading_at(frame, 2),
+        m2_pos: reading_at(frame, 4),
+        uwb: at
+            .uwb
+            .map(|o| core::array::from_fn(|i| reading_at(frame, o + 2 * i))),
+        tof: at.tof.map(|o| reading_at(frame, o)),
+        imu: at
+            .imu
+            .map(|o| Imu::from_array(core::array::from_fn(|i| f32_at(frame, o + 4 * i)))),
+        m1_adcs: at
+            .adcs
+            .map(|o| core::array::from_fn(|i| u16_at(frame, o + 2 * i))),
+        m2_adcs: at
+            .adcs
+            .map(|o| core::array::from_fn(|i| u16_at(frame, o + M1_ADCS_LEN + 2 * i))),
+    }
+}
+
+#[cold]
+fn zero_padded<const L: usize>(frame: &[u8]) -> [u8; L] {
+    let mut padded = [0; L];
+    let n = frame.len().min(L);
+    padded[..n].copy_from_slice(&frame[..n]);
+    padded
 }
 
 fn put_u16(out: &mut [u8], at: usize, value: u16) {
@@ -203,33 +258,16 @@ impl Telemetry {
     }
 
     /// Read the fields of `frame`, which has `layout`'s length.
+    #[inline(always)]
     pub(crate) fn parse(layout: Layout, frame: &[u8]) -> Telemetry {
-        let at = offsets(layout);
-        let f32_at = |i: usize| {
-            f32::from_bits(u32::from_le_bytes([
-                frame[i],
-                frame[i + 1],
-                frame[i + 2],
-                frame[i + 3],
-            ]))
-        };
-        Telemetry {
-            layout,
-            m1_pos: reading_at(frame, 2),
-            m2_pos: reading_at(frame, 4),
-            uwb: at
-                .uwb
-                .map(|o| core::array::from_fn(|i| reading_at(frame, o + 2 * i))),
-            tof: at.tof.map(|o| reading_at(frame, o)),
-            imu: at
-                .imu
-                .map(|o| Imu::from_array(core::array::from_fn(|i| f32_at(o + 4 * i)))),
-            m1_adcs: at
-                .adcs
-                .map(|o| core::array::from_fn(|i| u16_at(frame, o + 2 * i))),
-            m2_adcs: at
-                .adcs
-                .map(|o| core::array::from_fn(|i| u16_at(frame, o + M1_ADCS_LEN + 2 * i))),
+        // One fixed-size reader per layout: every offset below is then a
+        // constant into a fixed array, so the reads need no bounds checks.
+        match layout {
+            Layout::Pos7 => parse_fixed::<7>(Layout::Pos7, frame),
+            Layout::Uwb15 => parse_fixed::<15>(Layout::Uwb15, frame),
+            Layout::UwbTof17 => parse_fixed::<17>(Layout::UwbTof17, frame),
+            Layout::Spi45 => parse_fixed::<45>(Layout::Spi45, frame),
+            Layout::Ble53 => parse_fixed::<53>(Layout::Ble53, frame),
         }
     }
 

@@ -146,7 +146,10 @@ pub(crate) fn report_len_ok(dialect: Dialect, len: u8, frame: &[u8]) -> bool {
         id::FEATURE_CHECK => match (at(2), at(3)) {
             (Some(msg_type), Some(1)) => match feature_extras(msg_type) {
                 Extras::Counted => match at(7) {
-                    None => len >= 7,
+                    // At most 8 pins follow, as checked once the count is in:
+                    // a length refused then must be refused now (the framing
+                    // answers the same for every longer input).
+                    None => (7..=15).contains(&len),
                     Some(count) => count <= 8 && usize::from(len) == 7 + usize::from(count),
                 },
                 Extras::Len(a, b) => len == 3 + a || len == 3 + b,

@@ -1,0 +1,50 @@
+//! Inputs the fuzz targets found, kept as regression tests.
+
+use robowire::telemetrix::{Dialect, ReportDecoder, ReportFraming};
+use robowire::{OwnedEvent, StreamDecoder};
+
+fn events<F: robowire::Framing, const N: usize>(
+    mut decoder: StreamDecoder<F, N>,
+    input: &[u8],
+    chunk: usize,
+) -> Vec<OwnedEvent<F>> {
+    let mut events = Vec::new();
+    for piece in input.chunks(chunk) {
+        events.extend(decoder.feed(piece));
+    }
+    events.extend(decoder.flush());
+    events
+}
+
+/// `telemetrix_stream`: a FEATURE_CHECK report header with `LEN = 255`. Its
+/// first bytes were refused as an impossible length, but once the message
+/// type and status arrived the length check let any `LEN >= 7` through, so
+/// the answer depended on how the bytes were split.
+#[test]
+fn feature_check_length_is_refused_however_the_bytes_arrive() {
+    let input = [0x00, 0x29, 0x79, 0xff, 0x25, 0x01, 0x01, 0x00];
+    for dialect in [Dialect::Mirte13, Dialect::Mirte12, Dialect::Upstream11] {
+        let framing = ReportFraming::new().with_dialect(dialect);
+        let whole = events(ReportDecoder::new(framing), &input, input.len());
+        for chunk in 1..input.len() {
+            assert_eq!(
+                events(ReportDecoder::new(framing), &input, chunk),
+                whole,
+                "{dialect:?}, chunk {chunk}"
+            );
+        }
+        if dialect == Dialect::Mirte13 {
+            // FEATURE_CHECK is a report in this dialect: refused by length.
+            let at_3 = whole
+                .iter()
+                .find_map(|e| e.as_ref().err().filter(|r| r.offset == 3));
+            assert!(
+                matches!(
+                    at_3.map(|r| r.error),
+                    Some(robowire::telemetrix::Error::BadLength { id: 37, len: 255 })
+                ),
+                "{whole:?}"
+            );
+        }
+    }
+}
