@@ -476,6 +476,16 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
             if inner_end == n {
                 return Verdict::Superseded(n);
             }
+            if inner_end > n {
+                // The candidate ends inside the inner frame, so whatever
+                // confirms it is the inner frame's own bytes: the inner frame
+                // wins if what follows it confirms it.
+                match self.confirmed(c, inner_end, at_end) {
+                    Ok(true) => return Verdict::Superseded(n),
+                    Ok(false) => {}
+                    Err(need) => return self.wait_or_accept(n, need),
+                }
+            }
             return match self.confirmed(c, n, at_end) {
                 Ok(true) => Verdict::Frame(n),
                 Ok(false) => Verdict::Superseded(n),
@@ -489,13 +499,17 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
     /// input? `Err(n)`: cannot tell before `c` has `n` bytes.
     fn confirmed(&self, c: &[u8], end: usize, at_end: bool) -> Result<bool, usize> {
         let after = &c[end..];
-        if after.len() < F::HEADER_LEN.max(1) && !at_end {
-            return Err(end + F::HEADER_LEN.max(1));
+        let header_len = F::HEADER_LEN.max(1);
+        if after.len() < header_len {
+            // At the end of input only the end itself confirms: a header cut
+            // short by it is no frame.
+            return if at_end {
+                Ok(after.is_empty())
+            } else {
+                Err(end + header_len)
+            };
         }
-        if after.is_empty() {
-            return Ok(true);
-        }
-        let header = &after[..after.len().min(F::HEADER_LEN.max(1))];
+        let header = &after[..header_len];
         Ok(self.framing.find_start(header) == 0
             && !matches!(self.framing.check(header, false), Check::Reject(_)))
     }
