@@ -18,10 +18,15 @@ fuzz_target!(|data: &[u8]| {
         let mut input = data;
         while let Some(event) = commands.decode(&mut input) {
             if let Ok(frame) = event {
-                let n = frame.message.encode_in(dialect, &mut out).expect("re-encode command");
+                let n = frame
+                    .message
+                    .encode_in(dialect, &mut out)
+                    .expect("re-encode command");
                 assert_eq!(&out[..n], frame.raw);
                 let owned = frame.message.to_owned();
-                let m = owned.encode_in(dialect, &mut out).expect("re-encode owned command");
+                let m = owned
+                    .encode_in(dialect, &mut out)
+                    .expect("re-encode owned command");
                 assert_eq!(&out[..m], frame.raw);
             }
         }
@@ -30,10 +35,15 @@ fuzz_target!(|data: &[u8]| {
         let mut input = data;
         while let Some(event) = reports.decode(&mut input) {
             if let Ok(frame) = event {
-                let n = frame.message.encode_in(dialect, &mut out).expect("re-encode report");
+                let n = frame
+                    .message
+                    .encode_in(dialect, &mut out)
+                    .expect("re-encode report");
                 assert_eq!(&out[..n], frame.raw);
                 let owned = frame.message.to_owned();
-                let m = owned.encode_in(dialect, &mut out).expect("re-encode owned report");
+                let m = owned
+                    .encode_in(dialect, &mut out)
+                    .expect("re-encode owned report");
                 assert_eq!(&out[..m], frame.raw);
             }
         }
@@ -43,7 +53,10 @@ fuzz_target!(|data: &[u8]| {
         let mut input = data;
         while let Some(event) = reports.decode(&mut input) {
             if let Ok(frame) = event {
-                let n = frame.message.encode_in(dialect, &mut out).expect("re-encode lenient");
+                let n = frame
+                    .message
+                    .encode_in(dialect, &mut out)
+                    .expect("re-encode lenient");
                 assert_eq!(&out[..n], frame.raw);
             }
         }

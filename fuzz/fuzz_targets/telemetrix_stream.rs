@@ -25,7 +25,9 @@ where
     let mut pos = 0;
     let mut i = 0;
     while pos < input.len() {
-        let size = sizes.get(i % sizes.len().max(1)).map_or(input.len(), |&s| usize::from(s) + 1);
+        let size = sizes
+            .get(i % sizes.len().max(1))
+            .map_or(input.len(), |&s| usize::from(s) + 1);
         i += 1;
         let chunk = &input[pos..(pos + size).min(input.len())];
         let mut rest = chunk;
@@ -41,7 +43,10 @@ where
         let s = decoder.stats();
         assert!(s.bytes <= input.len() as u64);
         assert_eq!(s.bytes, pos as u64);
-        assert_eq!(s.bytes, s.frame_bytes + s.skipped + decoder.buffered() as u64);
+        assert_eq!(
+            s.bytes,
+            s.frame_bytes + s.skipped + decoder.buffered() as u64
+        );
     }
     events.extend(decoder.flush());
     let s = decoder.stats();
@@ -82,7 +87,11 @@ fuzz_target!(|data: &[u8]| {
     let (sizes, input) = rest.split_at(rest.len().min(8));
     let reports = ReportFraming::new().with_dialect(dialect);
     check(|| ReportDecoder::new(reports), input, sizes);
-    check(|| LenientReportDecoder::new(reports.lenient()), input, sizes);
+    check(
+        || LenientReportDecoder::new(reports.lenient()),
+        input,
+        sizes,
+    );
     let commands = CommandFraming::new().with_dialect(dialect);
     check(|| CommandDecoder::new(commands), input, sizes);
 });
