@@ -13,10 +13,14 @@ pub mod omnitiles;
 pub mod pixy2;
 #[cfg(feature = "serde")]
 mod serde_support;
+pub mod side;
 pub mod stream;
 pub mod telemetrix;
 
 pub use encode::{Encode, EncodeError, FrameBuf};
+#[allow(deprecated)]
+pub use stream::Framed;
 pub use stream::{
-    Check, Event, Feed, Flush, Frame, Framed, Framing, OwnedEvent, Rejected, Stats, StreamDecoder,
+    Check, Event, Feed, Flush, Frame, FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats,
+    StreamDecoder,
 };

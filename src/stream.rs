@@ -1,6 +1,6 @@
 //! The one streaming engine shared by every protocol.
 //!
-//! A protocol describes its framing through the [`Framing`] trait: where a frame
+//! A protocol describes its framing through the [`FrameRules`] trait: where a frame
 //! may start, and — given the bytes from a candidate start — whether they are a
 //! frame of length `n`, not a frame, or not enough to tell yet. [`StreamDecoder`]
 //! does everything else, once, for all protocols:
@@ -23,7 +23,7 @@
 
 use core::fmt;
 
-/// What a [`Framing`] says about the bytes that begin at a candidate start.
+/// What a [`FrameRules`] says about the bytes that begin at a candidate start.
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -41,20 +41,20 @@ pub enum Check<E> {
 
 /// A protocol's framing rules: everything the engine needs to find frames.
 ///
-/// Implementations must be *consistent*: once [`check`](Framing::check) has
+/// Implementations must be *consistent*: once [`check`](FrameRules::check) has
 /// answered [`Check::Frame`] or [`Check::Reject`] for some bytes, it must give the
 /// same answer for any longer input that starts with those bytes (when `at_end`
 /// is false). The engine's chunking invariance rests on this.
-pub trait Framing {
+pub trait FrameRules {
     /// Why a candidate was rejected or a frame could not be parsed.
     type Error: Copy + fmt::Debug + Eq;
     /// The typed message parsed from a valid frame; it may borrow the frame.
     type Message<'a>;
-    /// An owned form of [`Message`](Framing::Message), for iterators and for
+    /// An owned form of [`Message`](FrameRules::Message), for iterators and for
     /// keeping a message after its bytes are gone.
     type Owned;
 
-    /// Bytes from a candidate start that are enough for [`check`](Framing::check)
+    /// Bytes from a candidate start that are enough for [`check`](FrameRules::check)
     /// to reject an impossible header (start, id or type, length). The engine
     /// reads this many bytes after a frame to tell whether another frame
     /// plausibly follows it (see [`StreamDecoder`]'s resync verification).
@@ -73,7 +73,7 @@ pub trait Framing {
     fn find_start(&self, bytes: &[u8]) -> usize;
 
     /// Examine `candidate`, whose first byte was returned by
-    /// [`find_start`](Framing::find_start). `at_end` says no more bytes will
+    /// [`find_start`](FrameRules::find_start). `at_end` says no more bytes will
     /// follow `candidate`, so [`Check::Need`] is then taken as truncation.
     fn check(&self, candidate: &[u8], at_end: bool) -> Check<Self::Error>;
 
@@ -89,7 +89,7 @@ pub trait Framing {
     /// [`Stats::checksum_errors`]).
     fn is_checksum_error(&self, error: &Self::Error) -> bool;
 
-    /// Parse a frame that [`check`](Framing::check) accepted. An error here
+    /// Parse a frame that [`check`](FrameRules::check) accepted. An error here
     /// consumes the frame (its integrity checked out, its contents did not).
     fn parse<'a>(&self, frame: &'a [u8]) -> Result<Self::Message<'a>, Self::Error>;
 
@@ -102,7 +102,7 @@ pub trait Framing {
 /// With the `serde` feature, `raw` is written as a byte string (an array of
 /// numbers in JSON) and deserializing borrows it from the input, which only
 /// formats that hand out borrowed bytes can do (postcard, bincode; not
-/// JSON). To keep a frame in any format, serialize [`Framed`] instead.
+/// JSON). To keep a frame in any format, serialize [`OwnedFrame`] instead.
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -137,7 +137,7 @@ impl<M> Frame<'_, M> {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct Framed<M> {
+pub struct OwnedFrame<M> {
     /// Offset of the frame's first byte, as in [`Frame::offset`].
     pub offset: u64,
     /// The frame's length in bytes.
@@ -145,6 +145,10 @@ pub struct Framed<M> {
     /// The typed message.
     pub message: M,
 }
+
+/// The old name of [`OwnedFrame`].
+#[deprecated(since = "0.2.0", note = "renamed to `OwnedFrame`")]
+pub type Framed<M> = OwnedFrame<M>;
 
 /// A rejected candidate or an unparseable frame, with its stream offset.
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -237,11 +241,11 @@ impl Stats {
 /// found after skipped bytes or a rejection is accepted at once only if no start
 /// inside it begins another valid frame. If one does, the candidate is kept
 /// only when it is *confirmed*: followed by a plausible header
-/// ([`Framing::HEADER_LEN`] bytes that `check` does not reject) or by the end
+/// ([`FrameRules::HEADER_LEN`] bytes that `check` does not reject) or by the end
 /// of input, and the inner frame does not end exactly where it ends (then
 /// nothing after them can tell them apart, and the later start wins: garbage
 /// before a frame is likelier than a frame at a payload's tail). Otherwise it
-/// is set aside ([`Framing::superseded`]) and the
+/// is set aside ([`FrameRules::superseded`]) and the
 /// decoder resyncs by one, so the frame inside it is found. A candidate at the
 /// very start of the stream or directly after a frame is trusted, so a clean
 /// stream is never delayed or slowed by this.
@@ -266,7 +270,7 @@ pub struct StreamDecoder<F, const N: usize> {
     stats: Stats,
 }
 
-impl<F: Framing, const N: usize> StreamDecoder<F, N> {
+impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
     /// A decoder with empty state using `framing`.
     pub const fn new(framing: F) -> Self {
         Self {
@@ -708,7 +712,7 @@ impl<F: Framing, const N: usize> StreamDecoder<F, N> {
 }
 
 #[inline(always)]
-fn parse_counted<'a, F: Framing>(
+fn parse_counted<'a, F: FrameRules>(
     framing: &F,
     stats: &mut Stats,
     offset: u64,
@@ -730,8 +734,8 @@ fn parse_counted<'a, F: Framing>(
 }
 
 /// Turn a borrowed event into its owned form (what [`Feed`] and [`Flush`] yield).
-pub fn owned_event<F: Framing>(event: Event<'_, F::Message<'_>, F::Error>) -> OwnedEvent<F> {
-    event.map(|frame| Framed {
+pub fn owned_event<F: FrameRules>(event: Event<'_, F::Message<'_>, F::Error>) -> OwnedEvent<F> {
+    event.map(|frame| OwnedFrame {
         offset: frame.offset,
         len: frame.raw.len(),
         message: F::to_owned(frame.message),
@@ -739,7 +743,8 @@ pub fn owned_event<F: Framing>(event: Event<'_, F::Message<'_>, F::Error>) -> Ow
 }
 
 /// The owned event type of framing `F`, as [`Feed`] and [`Flush`] yield it.
-pub type OwnedEvent<F> = Result<Framed<<F as Framing>::Owned>, Rejected<<F as Framing>::Error>>;
+pub type OwnedEvent<F> =
+    Result<OwnedFrame<<F as FrameRules>::Owned>, Rejected<<F as FrameRules>::Error>>;
 
 /// Iterator over the events in one chunk; see [`StreamDecoder::feed`].
 #[derive(Debug)]
@@ -755,7 +760,7 @@ impl<F, const N: usize> Feed<'_, '_, F, N> {
     }
 }
 
-impl<F: Framing, const N: usize> Iterator for Feed<'_, '_, F, N> {
+impl<F: FrameRules, const N: usize> Iterator for Feed<'_, '_, F, N> {
     type Item = OwnedEvent<F>;
 
     fn next(&mut self) -> Option<Self::Item> {
@@ -769,7 +774,7 @@ pub struct Flush<'d, F, const N: usize> {
     decoder: &'d mut StreamDecoder<F, N>,
 }
 
-impl<F: Framing, const N: usize> Iterator for Flush<'_, F, N> {
+impl<F: FrameRules, const N: usize> Iterator for Flush<'_, F, N> {
     type Item = OwnedEvent<F>;
 
     fn next(&mut self) -> Option<Self::Item> {

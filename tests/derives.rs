@@ -4,7 +4,7 @@
 #[test]
 fn serde_round_trips_reports_and_counters() {
     use robowire::omnitiles::{Decoder, Framing};
-    use robowire::{EncodeError, Framed, Rejected, Stats};
+    use robowire::{EncodeError, OwnedFrame, Rejected, Stats};
 
     let mut decoder = Decoder::new(Framing::commands());
     decoder
@@ -18,14 +18,17 @@ fn serde_round_trips_reports_and_counters() {
     );
     assert_eq!(serde_json::from_str::<Stats>(&json).unwrap(), stats);
 
-    let framed = Framed {
+    let framed = OwnedFrame {
         offset: 4,
         len: 3,
         message: 7u8,
     };
     let json = serde_json::to_string(&framed).unwrap();
     assert_eq!(json, r#"{"offset":4,"len":3,"message":7}"#);
-    assert_eq!(serde_json::from_str::<Framed<u8>>(&json).unwrap(), framed);
+    assert_eq!(
+        serde_json::from_str::<OwnedFrame<u8>>(&json).unwrap(),
+        framed
+    );
 
     let rejected = Rejected {
         offset: 1,
@@ -56,7 +59,7 @@ fn defmt_formats_reports_and_counters() {
     }
     let names = [
         format::<robowire::Stats>(),
-        format::<robowire::Framed<u8>>(),
+        format::<robowire::OwnedFrame<u8>>(),
         format::<robowire::Rejected<u8>>(),
         format::<robowire::EncodeError>(),
         format::<robowire::Check<u8>>(),
@@ -92,7 +95,7 @@ fn defmt_formats_reports_and_counters() {
         format::<robowire::pixy2::FeaturesBuf>(),
         format::<robowire::pixy2::Host>(),
         format::<robowire::pixy2::Device>(),
-        format::<robowire::pixy2::Any>(),
+        format::<robowire::pixy2::Both>(),
         format::<robowire::pixy2::Framing<robowire::pixy2::Host>>(),
         format::<robowire::pixy2::Form>(),
         format::<robowire::pixy2::Packet<robowire::pixy2::Request>>(),

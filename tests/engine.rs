@@ -5,8 +5,8 @@
 //! invariance, push/poll, finish and the counters.
 
 use proptest::prelude::*;
-use robowire::stream::{owned_event, Check, Framing, StreamDecoder};
-use robowire::{Framed, OwnedEvent, Rejected};
+use robowire::stream::{owned_event, Check, FrameRules, StreamDecoder};
+use robowire::{OwnedEvent, OwnedFrame, Rejected};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum ToyError {
@@ -26,7 +26,7 @@ struct Toy {
 const START: u8 = 0x7e;
 const MAX_PAYLOAD: usize = 8;
 
-impl Framing for Toy {
+impl FrameRules for Toy {
     type Error = ToyError;
     type Message<'a> = &'a [u8];
     type Owned = Vec<u8>;
@@ -136,7 +136,7 @@ fn frame_inside_a_rejected_candidate_is_found() {
                         found: 0
                     }
                 }),
-                Ok(Framed {
+                Ok(OwnedFrame {
                     offset: 3,
                     len: 5,
                     message: vec![9, 9]
@@ -164,7 +164,7 @@ fn truncated_candidate_at_end_is_rescanned() {
                 offset: 0,
                 error: ToyError::Truncated(7)
             }),
-            Ok(Framed {
+            Ok(OwnedFrame {
                 offset: 3,
                 len: 3,
                 message: vec![]
@@ -216,7 +216,7 @@ fn parse_errors_consume_the_frame() {
                 offset: 0,
                 error: ToyError::EmptyPayload
             }),
-            Ok(Framed {
+            Ok(OwnedFrame {
                 offset: 3,
                 len: 4,
                 message: vec![7]
@@ -251,7 +251,7 @@ fn clear_drops_the_partial_candidate() {
     let events: Vec<_> = d.feed(&frame(&[1])).collect();
     assert_eq!(
         events,
-        [Ok(Framed {
+        [Ok(OwnedFrame {
             offset: 3,
             len: 4,
             message: vec![1]

@@ -4,7 +4,7 @@ use robowire::omnitiles::{
     units, Command, DatagramDecoder, Decoder, Error, Framing, Imu, Layout, Layouts, Motor, Packet,
     Telemetry,
 };
-use robowire::{Encode, FrameBuf, Framed, OwnedEvent, Rejected};
+use robowire::{Encode, FrameBuf, OwnedEvent, OwnedFrame, Rejected};
 
 type Ev = OwnedEvent<Framing>;
 
@@ -221,7 +221,7 @@ fn golden_commands_encode_and_decode() {
             let events = decode(framing, &wire);
             assert_eq!(
                 events,
-                [Ok(Framed {
+                [Ok(OwnedFrame {
                     offset: 0,
                     len: wire.len(),
                     message: cmd(command)
@@ -310,7 +310,7 @@ fn resync_by_one() {
     );
     assert_eq!(
         events[1],
-        Ok(Framed {
+        Ok(OwnedFrame {
             offset: 1,
             len: 4,
             message: extend
@@ -330,7 +330,7 @@ fn resync_by_one() {
                     found: 0x32
                 }
             }),
-            Ok(Framed {
+            Ok(OwnedFrame {
                 offset: 2,
                 len: 3,
                 message: cmd(Command::Brake { motor: M1 })
@@ -474,7 +474,7 @@ fn truncated_frame_is_reported_at_finish_and_rescanned() {
                 offset: 0,
                 error: Error::Truncated { len: 5 }
             }),
-            Ok(Framed {
+            Ok(OwnedFrame {
                 offset: 2,
                 len: 3,
                 message: cmd(Command::Brake { motor: M1 })
@@ -609,7 +609,7 @@ fn spi_buffer_with_one_45_byte_frame() {
     let events: Vec<Ev> = datagrams.decode(&buffer).collect();
     assert_eq!(
         events,
-        [Ok(Framed {
+        [Ok(OwnedFrame {
             offset: 0,
             len: 45,
             message: Packet::Telemetry(t)
@@ -647,12 +647,12 @@ fn datagrams() {
     assert_eq!(
         events,
         [
-            Ok(Framed {
+            Ok(OwnedFrame {
                 offset: 0,
                 len: 3,
                 message: cmd(Command::Brake { motor: M1 })
             }),
-            Ok(Framed {
+            Ok(OwnedFrame {
                 offset: 3,
                 len: 3,
                 message: cmd(Command::Brake { motor: M2 })
@@ -769,12 +769,12 @@ fn garbage_that_sums_right_does_not_swallow_a_real_frame() {
                     offset: 1,
                     error: Error::Superseded { len: 6 }
                 }),
-                Ok(Framed {
+                Ok(OwnedFrame {
                     offset: 4,
                     len: 3,
                     message: brake
                 }),
-                Ok(Framed {
+                Ok(OwnedFrame {
                     offset: 7,
                     len: 3,
                     message: cmd(Command::BaseBrake)

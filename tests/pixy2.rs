@@ -3,14 +3,14 @@
 //! host loop against a simulated device.
 
 use robowire::pixy2::{
-    self, packet_type as ty, Any, Barcode, Block, BlocksBuf, ChangeProg, Device, DeviceError,
+    self, packet_type as ty, Both, Barcode, Block, BlocksBuf, ChangeProg, Device, DeviceError,
     Error, FeaturesBuf, Form, Framing, GetBlocks, GetFeatures, GetFps, GetResolution, GetRgb,
     GetVersion, Host, Intersection, IntersectionLine, Malformed, Message, MessageBuf, Packet,
     PairError, ProgName, ProgSwitch, Query, Request, Resolution, Response, ResponseBuf,
     ReverseVector, Rgb, Section, SetCameraBrightness, SetDefaultTurn, SetLamp, SetLed, SetMode,
     SetNextTurn, SetServos, SetVector, Side, Vector, Version,
 };
-use robowire::{Encode, EncodeError, FrameBuf, Framed, OwnedEvent, Rejected, StreamDecoder};
+use robowire::{Encode, EncodeError, FrameBuf, OwnedEvent, OwnedFrame, Rejected, StreamDecoder};
 
 fn hex(s: &str) -> Vec<u8> {
     s.split_whitespace()
@@ -46,18 +46,18 @@ fn device(input: &[u8]) -> Vec<Ev<Device>> {
     decode_chunked::<Device, 72>(Framing::new(), input, input.len())
 }
 
-fn any(input: &[u8]) -> Vec<Ev<Any>> {
-    decode_chunked::<Any, 264>(Framing::new(), input, input.len())
+fn any(input: &[u8]) -> Vec<Ev<Both>> {
+    decode_chunked::<Both, 264>(Framing::new(), input, input.len())
 }
 
-fn frames<M: Clone, E>(events: &[Result<Framed<M>, E>]) -> Vec<M> {
+fn frames<M: Clone, E>(events: &[Result<OwnedFrame<M>, E>]) -> Vec<M> {
     events
         .iter()
         .filter_map(|e| e.as_ref().ok().map(|f| f.message.clone()))
         .collect()
 }
 
-fn errors<M, E: Clone>(events: &[Result<Framed<M>, Rejected<E>>]) -> Vec<(u64, E)> {
+fn errors<M, E: Clone>(events: &[Result<OwnedFrame<M>, Rejected<E>>]) -> Vec<(u64, E)> {
     events
         .iter()
         .filter_map(|e| e.as_ref().err().map(|r| (r.offset, r.error.clone())))
@@ -217,7 +217,7 @@ fn change_prog_names() {
     // The device matches prefixes and does not check the length: any payload
     // up to 64 bytes decodes and re-encodes as it was.
     let wire = hex("ae c1 02 04 6c 69 6e 65");
-    let [Ok(Framed { message, .. })] = &device(&wire)[..] else {
+    let [Ok(OwnedFrame { message, .. })] = &device(&wire)[..] else {
         panic!()
     };
     let Request::ChangeProg(ChangeProg(name)) = message.body else {
@@ -404,7 +404,7 @@ fn golden_responses_encode_and_decode() {
 fn golden_version_no_checksum_form_as_libpixyusb2_builds_it() {
     let wire = hex("ae c1 0f 10 00 22 03 00 0a 00 67 65 6e 65 72 61 6c 00 00 00");
     let events = host(&wire);
-    let [Ok(Framed { message, .. })] = &events[..] else {
+    let [Ok(OwnedFrame { message, .. })] = &events[..] else {
         panic!("{events:?}")
     };
     assert_eq!(message.form, Form::NoChecksum);
@@ -504,7 +504,7 @@ fn spi_filler_and_doubled_sync_byte() {
     // Filler and the doubled first sync byte are skipped silently.
     assert_eq!(
         events,
-        [Ok(Framed {
+        [Ok(OwnedFrame {
             offset: 4,
             len: 10,
             message: summed(ResponseBuf::Result(0))
@@ -528,7 +528,7 @@ fn real_trace_line_features_checksum_little_endian() {
         }))]
     );
     let wire = hex("af c1 31 08 93 00 01 06 28 00 28 33 09 00");
-    let [Ok(Framed { message, .. })] = &host(&wire)[..] else {
+    let [Ok(OwnedFrame { message, .. })] = &host(&wire)[..] else {
         panic!()
     };
     let ResponseBuf::Features(f) = message.body else {
@@ -665,7 +665,7 @@ fn malformed_no_checksum_frame_does_not_hide_a_real_frame_inside() {
 #[test]
 fn unknown_feature_type_is_reported_not_fatal() {
     let wire = hex("af c1 31 0c dd 01 01 06 0a 33 28 00 02 00 08 02 aa bb");
-    let [Ok(Framed { message, .. })] = &host(&wire)[..] else {
+    let [Ok(OwnedFrame { message, .. })] = &host(&wire)[..] else {
         panic!()
     };
     let ResponseBuf::Features(f) = message.body else {
@@ -699,7 +699,7 @@ fn payload_of_255_bytes_accepted_by_host_dropped_by_device() {
     let mut wire = hex("af c1 31 ff");
     wire.extend(pixy2::checksum(&payload).to_le_bytes());
     wire.extend(&payload);
-    let [Ok(Framed { message, len, .. })] = &host(&wire)[..] else {
+    let [Ok(OwnedFrame { message, len, .. })] = &host(&wire)[..] else {
         panic!()
     };
     assert_eq!(*len, 261);
@@ -901,7 +901,7 @@ fn every_split_point_and_push_give_the_same_events() {
     check_splits::<Host, 264>(Framing::new(), &input);
     check_splits::<Host, 264>(Framing::new().checksum_only(), &input);
     check_splits::<Device, 72>(Framing::new(), &input);
-    check_splits::<Any, 264>(Framing::new(), &input);
+    check_splits::<Both, 264>(Framing::new(), &input);
     let all = any(&input);
     let n_frames = frames(&all).len();
     assert_eq!(

@@ -4,7 +4,7 @@
 
 use proptest::prelude::*;
 use robowire::pixy2::{
-    self, Any, Barcode, Block, BlocksBuf, ChangeProg, DeviceError, Features, FeaturesBuf,
+    self, Both, Barcode, Block, BlocksBuf, ChangeProg, DeviceError, Features, FeaturesBuf,
     FirmwareType, Form, Framing, GetBlocks, GetFeatures, GetFps, GetResolution, GetRgb, GetVersion,
     Host, Intersection, IntersectionLine, MessageBuf, Packet, ProgName, Request, Resolution,
     ResponseBuf, ReverseVector, Section, SetCameraBrightness, SetDefaultTurn, SetLamp, SetLed,
@@ -142,7 +142,7 @@ fn encode<M: Encode>(m: &M) -> Vec<u8> {
     frame.to_vec()
 }
 
-fn decode_any(input: &[u8], chunk: usize) -> Vec<OwnedEvent<Framing<Any>>> {
+fn decode_any(input: &[u8], chunk: usize) -> Vec<OwnedEvent<Framing<Both>>> {
     let mut d = pixy2::decoder();
     let mut events = Vec::new();
     for piece in input.chunks(chunk.max(1)) {
@@ -169,7 +169,7 @@ proptest! {
         prop_assert_eq!(frame.message, packet);
         prop_assert_eq!(frame.len, wire.len());
         prop_assert_eq!(encode(&frame.message), wire.clone());
-        // Any-direction decoders agree.
+        // Both-direction decoders agree.
         let any = decode_any(&wire, wire.len());
         prop_assert_eq!(any.len(), 1);
         prop_assert_eq!(
@@ -276,10 +276,10 @@ proptest! {
         let mut events = Vec::new();
         for &b in &wire {
             if let Some(e) = d.push(b) {
-                events.push(robowire::stream::owned_event::<Framing<Any>>(e));
+                events.push(robowire::stream::owned_event::<Framing<Both>>(e));
             }
             while let Some(e) = d.poll() {
-                events.push(robowire::stream::owned_event::<Framing<Any>>(e));
+                events.push(robowire::stream::owned_event::<Framing<Both>>(e));
             }
         }
         events.extend(d.flush());

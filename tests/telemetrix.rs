@@ -27,7 +27,7 @@ type Ev<M> = Result<(u64, usize, M), (u64, Error)>;
 
 fn collect<F, const N: usize>(dec: &mut StreamDecoder<F, N>, chunks: &[&[u8]]) -> Vec<Ev<F::Owned>>
 where
-    F: robowire::Framing<Error = Error>,
+    F: robowire::FrameRules<Error = Error>,
 {
     let mut out = Vec::new();
     let map = |e: robowire::OwnedEvent<F>| match e {

@@ -3,7 +3,7 @@
 use robowire::telemetrix::{Dialect, ReportDecoder, ReportFraming};
 use robowire::{OwnedEvent, StreamDecoder};
 
-fn events<F: robowire::Framing, const N: usize>(
+fn events<F: robowire::FrameRules, const N: usize>(
     mut decoder: StreamDecoder<F, N>,
     input: &[u8],
     chunk: usize,

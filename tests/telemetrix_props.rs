@@ -12,7 +12,7 @@ use robowire::telemetrix::{
     ReportFraming, Rgb, SensorNew, SensorReading, SensorType, ServoMove, ServoPositions, Sonar,
     Ssd1306Command, Ssd1306Done, SONAR_NO_ECHO, SONAR_STALE,
 };
-use robowire::{Framing, StreamDecoder};
+use robowire::{FrameRules, StreamDecoder};
 
 const DIALECTS: [Dialect; 3] = [Dialect::Mirte13, Dialect::Mirte12, Dialect::Upstream11];
 
@@ -590,7 +590,7 @@ fn dialect_and_report() -> impl Strategy<Value = (Dialect, R)> {
 }
 
 /// All frames a decoder finds in `bytes`, with their raw bytes.
-fn frames<F: Framing, const N: usize>(
+fn frames<F: FrameRules, const N: usize>(
     mut dec: StreamDecoder<F, N>,
     bytes: &[u8],
 ) -> Vec<(Vec<u8>, F::Owned)> {

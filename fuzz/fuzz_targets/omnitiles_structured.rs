@@ -11,7 +11,7 @@ use robowire::omnitiles::{
     Command, DatagramDecoder, Decoder, Framing, Imu, Layout, Layouts, Motor, Packet, Telemetry,
     NO_READING,
 };
-use robowire::{Encode, FrameBuf, Framed};
+use robowire::{Encode, FrameBuf, OwnedFrame};
 use robowire_fuzz::decode_chunked;
 
 #[derive(Arbitrary, Debug)]
@@ -140,7 +140,7 @@ fuzz_target!(|input: Input| {
         }
         let mut datagrams = DatagramDecoder::new(framing);
         let alone: Vec<_> = datagrams.decode(&frame).collect();
-        let one = Framed {
+        let one = OwnedFrame {
             offset: 0,
             len: frame.len(),
             message: *message,
@@ -148,7 +148,7 @@ fuzz_target!(|input: Input| {
         assert_eq!(alone, [Ok(one)], "{message:?} as a datagram");
 
         interior_start |= frame[1..].contains(&0xa5);
-        want.push(Ok(Framed {
+        want.push(Ok(OwnedFrame {
             offset: stream.len() as u64,
             ..one
         }));

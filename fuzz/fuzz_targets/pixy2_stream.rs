@@ -4,7 +4,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use robowire::pixy2::{Any, Device, Framing, Host, Side};
+use robowire::pixy2::{Both, Device, Framing, Host, Side};
 use robowire::stream::owned_event;
 use robowire::{OwnedEvent, StreamDecoder};
 
@@ -104,5 +104,5 @@ fuzz_target!(|data: &[u8]| {
     check::<Host, 264>(Framing::new(), input, sizes);
     check::<Host, 264>(Framing::new().checksum_only(), input, sizes);
     check::<Device, 72>(Framing::new(), input, sizes);
-    check::<Any, 264>(Framing::new(), input, sizes);
+    check::<Both, 264>(Framing::new(), input, sizes);
 });

@@ -7,7 +7,7 @@ use libfuzzer_sys::fuzz_target;
 use robowire::telemetrix::{
     CommandDecoder, CommandFraming, Dialect, LenientReportDecoder, ReportDecoder, ReportFraming,
 };
-use robowire::{Framing, OwnedEvent, StreamDecoder};
+use robowire::{FrameRules, OwnedEvent, StreamDecoder};
 
 const DIALECTS: [Dialect; 3] = [Dialect::Mirte13, Dialect::Mirte12, Dialect::Upstream11];
 
@@ -19,7 +19,7 @@ fn run<F, const N: usize>(
     sizes: &[u8],
 ) -> Vec<OwnedEvent<F>>
 where
-    F: Framing,
+    F: FrameRules,
 {
     let mut events = Vec::new();
     let mut pos = 0;
@@ -32,7 +32,7 @@ where
         let chunk = &input[pos..(pos + size).min(input.len())];
         let mut rest = chunk;
         while let Some(event) = decoder.decode(&mut rest) {
-            events.push(event.map(|f| robowire::Framed {
+            events.push(event.map(|f| robowire::OwnedFrame {
                 offset: f.offset,
                 len: f.raw.len(),
                 message: F::to_owned(f.message),
@@ -59,7 +59,7 @@ where
 /// Where each event was and what it was. Two frames at the same offset with
 /// the same length have the same bytes, so the same message (comparing the
 /// messages themselves would trip over NaN floats in sensor reports).
-fn shape<F: Framing>(events: &[OwnedEvent<F>]) -> Vec<Result<(u64, usize), (u64, F::Error)>> {
+fn shape<F: FrameRules>(events: &[OwnedEvent<F>]) -> Vec<Result<(u64, usize), (u64, F::Error)>> {
     events
         .iter()
         .map(|e| match e {
@@ -71,7 +71,7 @@ fn shape<F: Framing>(events: &[OwnedEvent<F>]) -> Vec<Result<(u64, usize), (u64,
 
 fn check<F, const N: usize>(make: impl Fn() -> StreamDecoder<F, N>, input: &[u8], sizes: &[u8])
 where
-    F: Framing,
+    F: FrameRules,
 {
     let whole = run(make(), input, &[]);
     let chunked = run(make(), input, sizes);

@@ -12,7 +12,7 @@
 use std::fmt::Debug;
 
 use robowire::omnitiles::{Layout, Layouts};
-use robowire::stream::{owned_event, Framing, OwnedEvent, StreamDecoder};
+use robowire::stream::{owned_event, FrameRules, OwnedEvent, StreamDecoder};
 
 /// An OmniTiles framing chosen by one fuzz byte: bit 0 accepts commands, bits
 /// 1..=5 pick the telemetry layouts (in `Layout::ALL` order).
@@ -44,7 +44,7 @@ pub fn split_input(data: &[u8]) -> Option<(u8, &[u8], &[u8])> {
 #[derive(Debug, PartialEq)]
 pub struct Run<O, E> {
     /// The owned events, in order.
-    pub events: Vec<Result<robowire::Framed<O>, robowire::Rejected<E>>>,
+    pub events: Vec<Result<robowire::OwnedFrame<O>, robowire::Rejected<E>>>,
     /// The counters after the final `finish`.
     pub stats: robowire::Stats,
 }
@@ -58,7 +58,7 @@ pub fn decode_chunked<F, const N: usize>(
     sizes: &[usize],
 ) -> Run<F::Owned, F::Error>
 where
-    F: Framing,
+    F: FrameRules,
     F::Owned: Debug,
 {
     let all_zero = sizes.iter().all(|&s| s == 0);
@@ -114,7 +114,7 @@ pub fn decode_pushed<F, const N: usize>(
     input: &[u8],
 ) -> Run<F::Owned, F::Error>
 where
-    F: Framing,
+    F: FrameRules,
     F::Owned: Debug,
 {
     let mut events = Vec::new();
@@ -141,7 +141,7 @@ pub fn decode_fed<F, const N: usize>(
     input: &[u8],
 ) -> Run<F::Owned, F::Error>
 where
-    F: Framing,
+    F: FrameRules,
 {
     let mut events: Vec<_> = decoder.feed(input).collect();
     events.extend(decoder.flush());
@@ -156,7 +156,7 @@ fn finish<F, const N: usize>(
     input: &[u8],
     events: &mut Vec<OwnedEvent<F>>,
 ) where
-    F: Framing,
+    F: FrameRules,
     F::Owned: Debug,
 {
     let mut rounds = 0;
@@ -170,7 +170,7 @@ fn finish<F, const N: usize>(
     check_counters(decoder, input.len() as u64);
 }
 
-fn check_counters<F: Framing, const N: usize>(decoder: &StreamDecoder<F, N>, taken: u64) {
+fn check_counters<F: FrameRules, const N: usize>(decoder: &StreamDecoder<F, N>, taken: u64) {
     let s = decoder.stats();
     assert_eq!(s.bytes, taken, "bytes counts what was taken");
     assert_eq!(decoder.position(), taken);
@@ -188,7 +188,7 @@ fn check_counters<F: Framing, const N: usize>(decoder: &StreamDecoder<F, N>, tak
 }
 
 fn check_event<O: Debug, E: Debug>(
-    event: &Result<robowire::Framed<O>, robowire::Rejected<E>>,
+    event: &Result<robowire::OwnedFrame<O>, robowire::Rejected<E>>,
     input: &[u8],
 ) {
     match event {
@@ -205,7 +205,7 @@ fn check_event<O: Debug, E: Debug>(
 
 /// Events move forward: after a frame the next event starts past it, after a
 /// rejection past its first byte.
-fn check_order<O: Debug, E: Debug>(events: &[Result<robowire::Framed<O>, robowire::Rejected<E>>]) {
+fn check_order<O: Debug, E: Debug>(events: &[Result<robowire::OwnedFrame<O>, robowire::Rejected<E>>]) {
     let mut next = 0u64;
     for event in events {
         let (offset, len) = match event {
@@ -227,7 +227,7 @@ pub fn check_stream<F, const N: usize>(
     sizes: &[u8],
 ) -> Run<F::Owned, F::Error>
 where
-    F: Framing,
+    F: FrameRules,
     F::Owned: Debug + PartialEq,
 {
     let whole = decode_chunked(new(), input, &[input.len().max(1)]);

@@ -4,10 +4,10 @@
 use core::fmt;
 
 use crate::encode::EncodeError;
-use crate::stream::{owned_event, Framing, OwnedEvent, Rejected, StreamDecoder};
+use crate::stream::{owned_event, FrameRules, OwnedEvent, Rejected, StreamDecoder};
 
 /// What the reader does next.
-pub(crate) enum Step<F: Framing> {
+pub(crate) enum Step<F: FrameRules> {
     /// An event, decoded from bytes already read.
     Event(OwnedEvent<F>),
     /// The source reported its end and everything buffered has been resolved.
@@ -19,7 +19,7 @@ pub(crate) enum Step<F: Framing> {
 
 /// A [`StreamDecoder`] fed from a caller's buffer, one read at a time.
 #[derive(Debug)]
-pub(crate) struct Chunks<F: Framing, const N: usize, B> {
+pub(crate) struct Chunks<F: FrameRules, const N: usize, B> {
     decoder: StreamDecoder<F, N>,
     buf: B,
     /// `buf[start..end]` holds bytes read but not yet taken by the decoder.
@@ -30,7 +30,7 @@ pub(crate) struct Chunks<F: Framing, const N: usize, B> {
     last_rejected: Option<Rejected<F::Error>>,
 }
 
-impl<F: Framing, const N: usize, B: AsRef<[u8]> + AsMut<[u8]>> Chunks<F, N, B> {
+impl<F: FrameRules, const N: usize, B: AsRef<[u8]> + AsMut<[u8]>> Chunks<F, N, B> {
     pub(crate) fn new(decoder: StreamDecoder<F, N>, buf: B) -> Self {
         assert!(
             !buf.as_ref().is_empty(),

@@ -16,7 +16,7 @@
 //! // Noise, then M1 extend at 200, then a ping.
 //! let uart_rx: &[u8] = &[0x00, 0xa5, 0xa5, 0x30, 0xc8, 0xf8, 0xa5, 0x50, 0x50];
 //! let mut buf = [0u8; 16];
-//! let mut rx = PacketReader::new(uart_rx, Decoder::new(Framing::commands()), &mut buf[..]);
+//! let mut rx = PacketReader::new(uart_rx, Decoder::new(FrameRules::commands()), &mut buf[..]);
 //! let mut uart_tx = [0u8; 128];
 //! let mut tx = PacketWriter::<_, { Telemetry::MAX_LEN }>::new(&mut uart_tx[..]);
 //!
@@ -39,7 +39,7 @@ use embedded_io::{Read, Write};
 use super::chunks::{Chunks, Step};
 use super::WriteError;
 use crate::encode::{Encode, FrameBuf};
-use crate::stream::{Framed, Framing, OwnedEvent, Rejected, Stats, StreamDecoder};
+use crate::stream::{FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats, StreamDecoder};
 
 /// Reads frames from an [`embedded_io::Read`] through a [`StreamDecoder`],
 /// using the buffer `B` (`&mut [u8]`, `[u8; K]`, …) for each read.
@@ -51,12 +51,14 @@ use crate::stream::{Framed, Framing, OwnedEvent, Rejected, Stats, StreamDecoder}
 /// resolves the decoder's buffered candidate ([`StreamDecoder::finish`]) and
 /// returns `Ok(None)`, after which it reads again if called again.
 #[derive(Debug)]
-pub struct PacketReader<R, F: Framing, const N: usize, B> {
+pub struct PacketReader<R, F: FrameRules, const N: usize, B> {
     io: R,
     chunks: Chunks<F, N, B>,
 }
 
-impl<R: Read, F: Framing, const N: usize, B: AsRef<[u8]> + AsMut<[u8]>> PacketReader<R, F, N, B> {
+impl<R: Read, F: FrameRules, const N: usize, B: AsRef<[u8]> + AsMut<[u8]>>
+    PacketReader<R, F, N, B>
+{
     /// A reader decoding `io` with `decoder`, reading into `buf`.
     ///
     /// # Panics
@@ -90,7 +92,7 @@ impl<R: Read, F: Framing, const N: usize, B: AsRef<[u8]> + AsMut<[u8]>> PacketRe
     /// [`stats`](Self::stats); the latest is kept in
     /// [`last_rejected`](Self::last_rejected)). `Ok(None)` at the end of the
     /// input.
-    pub fn read_message(&mut self) -> Result<Option<Framed<F::Owned>>, R::Error> {
+    pub fn read_message(&mut self) -> Result<Option<OwnedFrame<F::Owned>>, R::Error> {
         while let Some(event) = self.read_event()? {
             if let Ok(frame) = event {
                 return Ok(Some(frame));

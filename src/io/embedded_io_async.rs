@@ -15,7 +15,7 @@
 //!     W: embedded_io_async::Write,
 //! {
 //!     let mut buf = [0u8; 32];
-//!     let mut rx = PacketReader::new(uart_rx, Decoder::new(Framing::commands()), &mut buf[..]);
+//!     let mut rx = PacketReader::new(uart_rx, Decoder::new(FrameRules::commands()), &mut buf[..]);
 //!     let mut tx = PacketWriter::<_, { Command::MAX_LEN }>::new(uart_tx);
 //!     // Echo every command back; stop at the end of the input or on a read error.
 //!     while let Ok(Some(frame)) = rx.read_message().await {
@@ -40,7 +40,7 @@ use embedded_io_async::{Read, Write};
 use super::chunks::{Chunks, Step};
 use super::WriteError;
 use crate::encode::{Encode, FrameBuf};
-use crate::stream::{Framed, Framing, OwnedEvent, Rejected, Stats, StreamDecoder};
+use crate::stream::{FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats, StreamDecoder};
 
 /// Reads frames from an [`embedded_io_async::Read`] through a
 /// [`StreamDecoder`], using the buffer `B` (`&mut [u8]`, `[u8; K]`, …) for each
@@ -54,12 +54,14 @@ use crate::stream::{Framed, Framing, OwnedEvent, Rejected, Stats, StreamDecoder}
 /// reach the decoder only once it has completed, so dropping the future (a
 /// `select` with a timeout) loses no decoded frame and no buffered byte.
 #[derive(Debug)]
-pub struct PacketReader<R, F: Framing, const N: usize, B> {
+pub struct PacketReader<R, F: FrameRules, const N: usize, B> {
     io: R,
     chunks: Chunks<F, N, B>,
 }
 
-impl<R: Read, F: Framing, const N: usize, B: AsRef<[u8]> + AsMut<[u8]>> PacketReader<R, F, N, B> {
+impl<R: Read, F: FrameRules, const N: usize, B: AsRef<[u8]> + AsMut<[u8]>>
+    PacketReader<R, F, N, B>
+{
     /// A reader decoding `io` with `decoder`, reading into `buf`.
     ///
     /// # Panics
@@ -93,7 +95,7 @@ impl<R: Read, F: Framing, const N: usize, B: AsRef<[u8]> + AsMut<[u8]>> PacketRe
     /// [`stats`](Self::stats); the latest is kept in
     /// [`last_rejected`](Self::last_rejected)). `Ok(None)` at the end of the
     /// input.
-    pub async fn read_message(&mut self) -> Result<Option<Framed<F::Owned>>, R::Error> {
+    pub async fn read_message(&mut self) -> Result<Option<OwnedFrame<F::Owned>>, R::Error> {
         while let Some(event) = self.read_event().await? {
             if let Ok(frame) = event {
                 return Ok(Some(frame));

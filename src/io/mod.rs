@@ -1,5 +1,5 @@
 //! Optional adapters between the [streaming engine](crate::stream) and I/O
-//! traits: each is written once, generic over [`Framing`], so every protocol
+//! traits: each is written once, generic over [`FrameRules`], so every protocol
 //! gets it.
 //!
 //! | feature | module | what it adds |
@@ -16,7 +16,7 @@
 //! into a buffer the caller provides and the writer encodes into a
 //! [`FrameBuf`](crate::FrameBuf) on the stack.
 //!
-//! [`Framing`]: crate::Framing
+//! [`FrameRules`]: crate::FrameRules
 //! [`StreamDecoder::finish`]: crate::StreamDecoder::finish
 
 #[cfg(feature = "tokio-util-07")]

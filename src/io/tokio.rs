@@ -5,13 +5,13 @@
 //! implements [`Decoder`] and [`Encoder<M>`] for every [`Encode`] message `M`,
 //! so a serial port, a TCP stream or a `tokio::io::duplex` pipe becomes a
 //! `Stream` of packets and a `Sink` of messages with `FramedRead`,
-//! `FramedWrite` or `Framed`.
+//! `FramedWrite` or `OwnedFrame`.
 //!
 //! `FramedRead` ends the stream at the first `Err`, so a rejected candidate
 //! (bad checksum, unknown id, garbage) is never an error here. What the stream
 //! yields is chosen by the codec's last type parameter:
 //!
-//! * [`Messages`] (the default): [`Framed`] messages only; rejections are
+//! * [`Messages`] (the default): [`OwnedFrame`] messages only; rejections are
 //!   counted in [`stats`](FrameCodec::stats) and the latest is kept in
 //!   [`last_rejected`](FrameCodec::last_rejected);
 //! * [`Events`] ([`FrameCodec::events`]): every [`OwnedEvent`], frames and
@@ -36,7 +36,7 @@
 //! # async fn main() -> std::io::Result<()> {
 //! let (host, tile) = tokio::io::duplex(64);
 //! let mut to_tile = FramedWrite::new(host, OmniTilesCodec::default());
-//! let mut at_tile = FramedRead::new(tile, OmniTilesCodec::new(Framing::commands()));
+//! let mut at_tile = FramedRead::new(tile, OmniTilesCodec::new(FrameRules::commands()));
 //!
 //! to_tile.send(Command::Extend { motor: Motor::M1, speed: 200 }).await?;
 //! to_tile.send(Command::Ping).await?;
@@ -62,11 +62,13 @@ use bytes::{Buf, BytesMut};
 use tokio_util::codec::{Decoder, Encoder};
 
 use crate::encode::Encode;
-use crate::stream::{owned_event, Framed, Framing, OwnedEvent, Rejected, Stats, StreamDecoder};
+use crate::stream::{
+    owned_event, FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats, StreamDecoder,
+};
 
 /// The OmniTiles codec: `FramedRead::new(port, OmniTilesCodec::default())`
-/// yields [`Framed<Packet>`](crate::omnitiles::Packet) and accepts commands and
-/// telemetry in the documented layouts ([`Framing::ANY`](crate::omnitiles::Framing::ANY)).
+/// yields [`OwnedFrame<Packet>`](crate::omnitiles::Packet) and accepts commands and
+/// telemetry in the documented layouts ([`FrameRules::ANY`](crate::omnitiles::Framing::ANY)).
 pub type OmniTilesCodec<Y = Messages> =
     FrameCodec<crate::omnitiles::Framing, { crate::omnitiles::BUFFER_LEN }, Y>;
 
@@ -92,13 +94,13 @@ pub type TelemetrixPicoCodec<Y = Messages> =
 
 /// A [`Decoder`] and [`Encoder`] for framing `F` with a decoder buffer of `N`
 /// bytes; `Y` chooses what the decoder yields ([`Messages`] or [`Events`]).
-pub struct FrameCodec<F: Framing, const N: usize, Y = Messages> {
+pub struct FrameCodec<F: FrameRules, const N: usize, Y = Messages> {
     decoder: StreamDecoder<F, N>,
     last_rejected: Option<Rejected<F::Error>>,
     yields: PhantomData<fn() -> Y>,
 }
 
-/// The codec yields [`Framed`] messages and counts rejections.
+/// The codec yields [`OwnedFrame`] messages and counts rejections.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Messages {}
 
@@ -114,7 +116,7 @@ mod sealed {
 
 /// What a [`FrameCodec`] yields for each decoded event: implemented by
 /// [`Messages`] and [`Events`] only.
-pub trait Yields<F: Framing>: sealed::Sealed {
+pub trait Yields<F: FrameRules>: sealed::Sealed {
     /// The decoder's `Item`.
     type Item;
 
@@ -123,15 +125,15 @@ pub trait Yields<F: Framing>: sealed::Sealed {
     fn item(event: OwnedEvent<F>) -> Option<Self::Item>;
 }
 
-impl<F: Framing> Yields<F> for Messages {
-    type Item = Framed<F::Owned>;
+impl<F: FrameRules> Yields<F> for Messages {
+    type Item = OwnedFrame<F::Owned>;
 
     fn item(event: OwnedEvent<F>) -> Option<Self::Item> {
         event.ok()
     }
 }
 
-impl<F: Framing> Yields<F> for Events {
+impl<F: FrameRules> Yields<F> for Events {
     type Item = OwnedEvent<F>;
 
     fn item(event: OwnedEvent<F>) -> Option<Self::Item> {
@@ -139,7 +141,7 @@ impl<F: Framing> Yields<F> for Events {
     }
 }
 
-impl<F: Framing, const N: usize> FrameCodec<F, N, Messages> {
+impl<F: FrameRules, const N: usize> FrameCodec<F, N, Messages> {
     /// A codec decoding with `framing`, yielding messages.
     pub const fn new(framing: F) -> Self {
         Self::from_decoder(StreamDecoder::new(framing))
@@ -156,7 +158,7 @@ impl<F: Framing, const N: usize> FrameCodec<F, N, Messages> {
     }
 }
 
-impl<F: Framing, const N: usize, Y> FrameCodec<F, N, Y> {
+impl<F: FrameRules, const N: usize, Y> FrameCodec<F, N, Y> {
     /// The same codec, yielding every event (frames and rejections).
     ///
     /// ```
@@ -164,7 +166,7 @@ impl<F: Framing, const N: usize, Y> FrameCodec<F, N, Y> {
     /// use robowire::omnitiles::Framing;
     /// use tokio_util::codec::Decoder;
     ///
-    /// let mut codec = OmniTilesCodec::new(Framing::commands()).events();
+    /// let mut codec = OmniTilesCodec::new(FrameRules::commands()).events();
     /// // A ping with a bad checksum, then a good one.
     /// let mut bytes = bytes::BytesMut::from(&[0xa5, 0x50, 0x51, 0xa5, 0x50, 0x50][..]);
     /// assert!(codec.decode(&mut bytes)?.unwrap().is_err());
@@ -221,7 +223,7 @@ impl<F: Framing, const N: usize, Y> FrameCodec<F, N, Y> {
     }
 }
 
-impl<F: Framing, const N: usize, Y: Yields<F>> FrameCodec<F, N, Y> {
+impl<F: FrameRules, const N: usize, Y: Yields<F>> FrameCodec<F, N, Y> {
     fn keep(&mut self, event: OwnedEvent<F>) -> Option<Y::Item> {
         if let Err(rejected) = event {
             self.last_rejected = Some(rejected);
@@ -230,13 +232,13 @@ impl<F: Framing, const N: usize, Y: Yields<F>> FrameCodec<F, N, Y> {
     }
 }
 
-impl<F: Framing + Default, const N: usize> Default for FrameCodec<F, N, Messages> {
+impl<F: FrameRules + Default, const N: usize> Default for FrameCodec<F, N, Messages> {
     fn default() -> Self {
         Self::new(F::default())
     }
 }
 
-impl<F: Framing + Clone, const N: usize, Y> Clone for FrameCodec<F, N, Y> {
+impl<F: FrameRules + Clone, const N: usize, Y> Clone for FrameCodec<F, N, Y> {
     fn clone(&self) -> Self {
         Self {
             decoder: self.decoder.clone(),
@@ -246,7 +248,7 @@ impl<F: Framing + Clone, const N: usize, Y> Clone for FrameCodec<F, N, Y> {
     }
 }
 
-impl<F: Framing + fmt::Debug, const N: usize, Y> fmt::Debug for FrameCodec<F, N, Y> {
+impl<F: FrameRules + fmt::Debug, const N: usize, Y> fmt::Debug for FrameCodec<F, N, Y> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("FrameCodec")
             .field("decoder", &self.decoder)
@@ -255,7 +257,7 @@ impl<F: Framing + fmt::Debug, const N: usize, Y> fmt::Debug for FrameCodec<F, N,
     }
 }
 
-impl<F: Framing, const N: usize, Y: Yields<F>> Decoder for FrameCodec<F, N, Y> {
+impl<F: FrameRules, const N: usize, Y: Yields<F>> Decoder for FrameCodec<F, N, Y> {
     type Item = Y::Item;
     type Error = io::Error;
 
@@ -297,7 +299,7 @@ impl<F: Framing, const N: usize, Y: Yields<F>> Decoder for FrameCodec<F, N, Y> {
     }
 }
 
-impl<F: Framing, const N: usize, Y, M: Encode> Encoder<M> for FrameCodec<F, N, Y> {
+impl<F: FrameRules, const N: usize, Y, M: Encode> Encoder<M> for FrameCodec<F, N, Y> {
     type Error = io::Error;
 
     /// Append `message`'s frame to `dst`. An [`EncodeError`](crate::EncodeError)

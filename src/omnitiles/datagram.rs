@@ -4,7 +4,7 @@
 use super::framing::{parse_frame, Framing};
 use super::layout::Layout;
 use super::{checksum, id, Decoder, Packet, START};
-use crate::stream::{owned_event, Framed, OwnedEvent, Stats};
+use crate::stream::{owned_event, OwnedEvent, OwnedFrame, Stats};
 
 /// Decodes one datagram at a time. Because the datagram's length is known, a
 /// telemetry layout is picked by it: a datagram that starts `a5 60` is one
@@ -91,7 +91,7 @@ impl DatagramDecoder {
         })
     }
 
-    fn whole_telemetry(&mut self, datagram: &[u8]) -> Option<Framed<Packet>> {
+    fn whole_telemetry(&mut self, datagram: &[u8]) -> Option<OwnedFrame<Packet>> {
         let layout = self.telemetry_layout(datagram)?;
         let len = layout.frame_len();
         let message = parse_frame(&datagram[..len]).ok()?;
@@ -99,7 +99,7 @@ impl DatagramDecoder {
         self.stats.frames += 1;
         self.stats.frame_bytes += len as u64;
         self.stats.skipped += (datagram.len() - len) as u64;
-        Some(Framed {
+        Some(OwnedFrame {
             offset: self.offset - datagram.len() as u64,
             len,
             message,
@@ -112,7 +112,7 @@ impl DatagramDecoder {
 pub struct Datagram<'d, 'a> {
     owner: &'d mut DatagramDecoder,
     engine: Decoder,
-    whole: Option<Framed<Packet>>,
+    whole: Option<OwnedFrame<Packet>>,
     rest: &'a [u8],
     base: u64,
     finished: bool,

@@ -237,7 +237,7 @@ impl Default for Framing {
     }
 }
 
-impl stream::Framing for Framing {
+impl stream::FrameRules for Framing {
     type Error = Error;
     type Message<'a> = Packet;
     type Owned = Packet;

@@ -28,6 +28,7 @@
 
 use core::marker::PhantomData;
 
+pub use crate::side::{Both, Device, Host};
 use crate::stream::{self, Check};
 
 use super::error::Error;
@@ -40,7 +41,7 @@ mod sealed {
 }
 
 /// Which messages a [`Framing`] accepts (sealed: [`Host`], [`Device`],
-/// [`Any`]).
+/// [`Both`]).
 pub trait Side: sealed::Sealed + Copy + Eq + core::hash::Hash + core::fmt::Debug + Default {
     /// The message a decoder of this side yields.
     type Message<'a>;
@@ -58,28 +59,9 @@ pub trait Side: sealed::Sealed + Copy + Eq + core::hash::Hash + core::fmt::Debug
     fn to_owned(message: Self::Message<'_>) -> Self::Owned;
 }
 
-/// The host's side of the link: accepts responses.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct Host;
-
-/// The device's side of the link (firmware, a simulator): accepts requests,
-/// with the device's 64-byte receive limit.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct Device;
-
-/// Both directions (captures, tooling): accepts requests and responses.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct Any;
-
 impl sealed::Sealed for Host {}
 impl sealed::Sealed for Device {}
-impl sealed::Sealed for Any {}
+impl sealed::Sealed for Both {}
 
 impl Side for Host {
     type Message<'a> = Packet<Response<'a>>;
@@ -125,7 +107,7 @@ impl Side for Device {
     }
 }
 
-impl Side for Any {
+impl Side for Both {
     type Message<'a> = Packet<Message<'a>>;
     type Owned = Packet<MessageBuf>;
     const MAX_FRAME: usize = MAX_FRAME;
@@ -192,7 +174,7 @@ impl<S: Side> Framing<S> {
     }
 }
 
-impl<S: Side> stream::Framing for Framing<S> {
+impl<S: Side> stream::FrameRules for Framing<S> {
     type Error = Error;
     type Message<'a> = S::Message<'a>;
     type Owned = S::Owned;

@@ -75,7 +75,11 @@ pub use features::{
     Barcode, Element, Elements, FeatureIter, Features, FeaturesBuf, Intersection, IntersectionLine,
     Section, Sections, Vector, FTYPE_BARCODE, FTYPE_INTERSECTION, FTYPE_VECTOR, INTERSECTION_SLOTS,
 };
-pub use framing::{Any, Device, Framing, Host, Side};
+pub use framing::{Both, Device, Framing, Host, Side};
+
+/// The old name of [`Both`].
+#[deprecated(since = "0.2.0", note = "renamed to `Both` (`robowire::side::Both`)")]
+pub type Any = Both;
 pub use packet::{
     checksum, packet_type, Form, Message, MessageBuf, Packet, DEVICE_MAX_PAYLOAD, MAX_FRAME,
     MAX_PAYLOAD, SYNC_CHECKSUM, SYNC_NO_CHECKSUM,
@@ -102,7 +106,7 @@ pub type HostDecoder = StreamDecoder<Framing<Host>, HOST_BUFFER>;
 /// Decodes requests (the device's side, or a simulated Pixy2).
 pub type DeviceDecoder = StreamDecoder<Framing<Device>, DEVICE_BUFFER>;
 /// Decodes both directions (captures, tooling).
-pub type Decoder = StreamDecoder<Framing<Any>, HOST_BUFFER>;
+pub type Decoder = StreamDecoder<Framing<Both>, HOST_BUFFER>;
 
 /// A host decoder accepting both frame forms.
 pub const fn host_decoder() -> HostDecoder {

@@ -119,7 +119,7 @@ impl ReportFraming {
     }
 }
 
-impl stream::Framing for ReportFraming {
+impl stream::FrameRules for ReportFraming {
     type Error = Error;
     type Message<'a> = ReportRef<'a>;
     type Owned = OwnedReport;
@@ -193,7 +193,7 @@ impl CommandFraming {
     }
 }
 
-impl stream::Framing for CommandFraming {
+impl stream::FrameRules for CommandFraming {
     type Error = Error;
     type Message<'a> = CommandRef<'a>;
     type Owned = OwnedCommand;

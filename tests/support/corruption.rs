@@ -7,7 +7,7 @@
 use robowire::omnitiles::{
     Command, Decoder, Framing, Imu, Layout, Motor, Packet, Telemetry, NO_READING,
 };
-use robowire::{FrameBuf, Framed};
+use robowire::{FrameBuf, OwnedFrame};
 
 /// A tiny xorshift generator: reproducible streams without a dependency.
 pub struct Rng(pub u64);
@@ -206,7 +206,7 @@ pub fn command_stream(seed: u64, count: usize, corruption: Corruption) -> Stream
 }
 
 /// Decode `bytes` fed in `chunk`-byte pieces (0: whole), then finish.
-pub fn decode(framing: Framing, bytes: &[u8], chunk: usize) -> Vec<Framed<Packet>> {
+pub fn decode(framing: Framing, bytes: &[u8], chunk: usize) -> Vec<OwnedFrame<Packet>> {
     let mut decoder = Decoder::new(framing);
     let mut frames = Vec::new();
     let chunk = if chunk == 0 {
@@ -236,7 +236,7 @@ pub struct Score {
     pub false_frames: usize,
 }
 
-pub fn score(stream: &Stream, decoded: &[Framed<Packet>]) -> Score {
+pub fn score(stream: &Stream, decoded: &[OwnedFrame<Packet>]) -> Score {
     let mut intact = 0;
     let mut false_frames = 0;
     let mut sent = stream.sent.iter().filter(|s| s.intact).peekable();

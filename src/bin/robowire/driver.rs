@@ -7,7 +7,7 @@ use crate::input::{ByteSource, Input, Lines};
 use crate::json::{Fields, JsonLine};
 use crate::Failure;
 use clap::Args;
-use robowire::stream::{Framing, OwnedEvent, Stats, StreamDecoder};
+use robowire::stream::{FrameRules, OwnedEvent, Stats, StreamDecoder};
 use serde_json::Value;
 use std::io::{self, BufWriter, StdoutLock, Write};
 use std::path::PathBuf;
@@ -16,13 +16,13 @@ use std::path::PathBuf;
 /// printed, and how a JSON line becomes a frame.
 pub trait Protocol {
     /// The protocol's framing, as its stream decoder uses it.
-    type Framing: Framing;
+    type Framing: FrameRules;
 
     /// Write `type` and the message's fields.
-    fn describe(message: &<Self::Framing as Framing>::Owned, line: &mut JsonLine);
+    fn describe(message: &<Self::Framing as FrameRules>::Owned, line: &mut JsonLine);
 
     /// Write `error` and the error's details.
-    fn describe_error(error: &<Self::Framing as Framing>::Error, line: &mut JsonLine);
+    fn describe_error(error: &<Self::Framing as FrameRules>::Error, line: &mut JsonLine);
 
     /// Read one JSON object (a line that is not a diagnostic event) and
     /// append the frame's bytes to `frame`. The error names the problem; the

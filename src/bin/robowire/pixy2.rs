@@ -12,7 +12,7 @@ use crate::json::{read_int, Fields, JsonLine};
 use crate::Failure;
 use clap::{Args, ValueEnum};
 use robowire::pixy2::{
-    Any, Barcode, Block, BlocksBuf, ChangeProg, Device, DeviceError, Element, Error, FeaturesBuf,
+    Barcode, Block, BlocksBuf, Both, ChangeProg, Device, DeviceError, Element, Error, FeaturesBuf,
     FirmwareType, Form, Framing, GetBlocks, GetFeatures, GetFps, GetResolution, GetRgb, GetVersion,
     Host, Intersection, IntersectionLine, Malformed, MessageBuf, Packet, ProgName, Request,
     Resolution, Response, ResponseBuf, ReverseVector, Section, SetCameraBrightness, SetDefaultTurn,
@@ -152,7 +152,7 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
             chunk,
             &mut printer,
         ),
-        Sender::Any => driver::decode_stream::<Pixy2<Any>, HOST_BUFFER>(
+        Sender::Any => driver::decode_stream::<Pixy2<Both>, HOST_BUFFER>(
             StreamDecoder::new(framing(only)),
             source,
             chunk,
@@ -173,7 +173,7 @@ fn framing<S: Side>(checksum_only: bool) -> Framing<S> {
 pub fn encode(args: &EncodeArgs, out: &mut Output) -> Result<(), Failure> {
     let input = Input::open(args.common.input.as_deref())?;
     // Encoding does not depend on the side: every type name is unique.
-    driver::encode_lines::<Pixy2<Any>>(input, args.common.hex, out)
+    driver::encode_lines::<Pixy2<Both>>(input, args.common.hex, out)
 }
 
 /// The Pixy2 protocol as the tool sees it, decoding the messages of side `S`.

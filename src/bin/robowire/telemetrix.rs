@@ -16,7 +16,7 @@ use crate::input::{ByteSource, HexBytes, Input, RawBytes};
 use crate::json::{Fields, JsonLine};
 use crate::Failure;
 use clap::{Args, ValueEnum};
-use robowire::stream::{Check, Framing, OwnedEvent, StreamDecoder};
+use robowire::stream::{Check, FrameRules, OwnedEvent, StreamDecoder};
 use robowire::telemetrix::{
     Command, CommandFraming, Dialect, Error, ModuleNew, ModuleType, OwnedCommand, OwnedReport,
     Report, ReportFraming,
@@ -255,7 +255,7 @@ impl TmxFraming {
     }
 }
 
-impl Framing for TmxFraming {
+impl FrameRules for TmxFraming {
     type Error = Error;
     type Message<'a> = Message;
     type Owned = Message;
