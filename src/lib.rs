@@ -4,6 +4,8 @@
 #![forbid(unsafe_code)]
 #![doc = include_str!("../README.md")]
 
+#[cfg(feature = "serde")]
+extern crate alloc;
 #[cfg(feature = "tokio-util-07")]
 extern crate std;
 
