@@ -1,0 +1,101 @@
+//! `robowire.StreamDecoder`: the Python base class of every protocol's
+//! `Decoder`, holding one [`Engine`].
+
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::engine::{stats_dict, with_bytes, Engine};
+
+/// The stream decoder every protocol's ``Decoder`` is: feed it bytes as they
+/// arrive, in chunks of any size, and it returns the decoded items.
+///
+/// Each item is a dict in the ``robowire`` command-line tool's JSON-lines
+/// schema: ``offset`` (of the frame's first byte, counted from the first byte
+/// ever fed), ``len`` (the frame's length), then the message's own keys
+/// (``type`` first). With ``errors=True``, rejected candidates are items too:
+/// ``offset`` then the error's keys (``error`` first, no ``type``). The items
+/// never depend on how the bytes were split; call :meth:`finish` at the end of
+/// the input to resolve a frame cut short.
+///
+/// Construct a protocol's subclass (``robowire.omnitiles.Decoder``, ...), not
+/// this class.
+#[pyclass(module = "robowire", subclass, name = "StreamDecoder")]
+pub struct PyStreamDecoder {
+    engine: Box<dyn Engine>,
+    errors: bool,
+    repr: String,
+}
+
+impl PyStreamDecoder {
+    /// A decoder around `engine`; `repr` is what `repr()` shows.
+    pub fn new(engine: Box<dyn Engine>, errors: bool, repr: String) -> Self {
+        Self {
+            engine,
+            errors,
+            repr,
+        }
+    }
+}
+
+#[pymethods]
+impl PyStreamDecoder {
+    /// feed(data, /)
+    /// --
+    ///
+    /// Decode the next chunk of the stream (``bytes``, ``bytearray`` or
+    /// ``memoryview``) and return the items completed by it, in stream order.
+    /// A frame cut by the end of the chunk is kept and completed by the next.
+    fn feed<'py>(&mut self, data: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyList>> {
+        let out = PyList::empty(data.py());
+        with_bytes(data, |bytes| self.engine.feed(bytes, self.errors, &out))??;
+        Ok(out)
+    }
+
+    /// finish()
+    /// --
+    ///
+    /// Signal the end of the input and return the items that resolves: a
+    /// buffered frame that is complete, or (with ``errors=True``) the
+    /// rejection of one cut short. The decoder is then empty and can take a new
+    /// stream; offsets and counters carry on.
+    fn finish<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let out = PyList::empty(py);
+        self.engine.finish(self.errors, &out)?;
+        Ok(out)
+    }
+
+    /// clear()
+    /// --
+    ///
+    /// Forget a buffered partial frame (its bytes count as skipped), for
+    /// example after the link was reopened. Offsets and counters carry on.
+    fn clear(&mut self) {
+        self.engine.clear();
+    }
+
+    /// Link-quality counters, a new dict on each read: ``bytes`` (taken so
+    /// far), ``frames``, ``frame_bytes``, ``skipped`` (bytes in no frame),
+    /// ``checksum_errors``, ``rejected`` (other rejections), ``malformed``
+    /// (frames whose contents did not parse) and ``superseded``. They add up:
+    /// ``bytes == frame_bytes + skipped + buffered``.
+    #[getter]
+    fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        stats_dict(py, &self.engine.stats())
+    }
+
+    /// Bytes held as the start of an unfinished frame.
+    #[getter]
+    fn buffered(&self) -> usize {
+        self.engine.buffered()
+    }
+
+    /// Whether rejected candidates are returned as items.
+    #[getter]
+    fn errors(&self) -> bool {
+        self.errors
+    }
+
+    fn __repr__(&self) -> String {
+        self.repr.clone()
+    }
+}

@@ -1,0 +1,177 @@
+//! The one binding over robowire's stream engine, for every protocol.
+//!
+//! A protocol's Python `Decoder` holds a boxed [`Engine`]: a
+//! [`StreamDecoder`] over the protocol's [`FrameRules`], whose owned messages
+//! and errors serialize (serde) in the `robowire` tool's JSON-lines schema.
+//! Each event becomes a Python dict by pythonizing the library's own
+//! [`OwnedFrame`] or [`Rejected`]; nothing here knows any message.
+
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyByteArray, PyBytes, PyDict, PyList, PyMapping, PyString};
+use pythonize::{depythonize, pythonize};
+use robowire::stream::{owned_event, FrameRules, OwnedEvent, StreamDecoder};
+use robowire::{Encode, Stats};
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+
+use crate::schema::Adapt;
+
+/// A stream decoder of any protocol, as the Python classes use it.
+pub trait Engine: Send + Sync {
+    /// Decode `data`, appending the events to `out` (rejections only when
+    /// `errors`). All of `data` is taken even if appending fails.
+    fn feed(&mut self, data: &[u8], errors: bool, out: &Bound<'_, PyList>) -> PyResult<()>;
+    /// End of input: resolve what is buffered, appending the events to `out`.
+    fn finish(&mut self, errors: bool, out: &Bound<'_, PyList>) -> PyResult<()>;
+    /// The counters so far.
+    fn stats(&self) -> Stats;
+    /// Bytes held as the start of an unfinished candidate.
+    fn buffered(&self) -> usize;
+    /// Forget a buffered partial candidate (counted as skipped).
+    fn clear(&mut self);
+}
+
+/// [`Engine`] for robowire's [`StreamDecoder`] over framing `R`.
+pub struct Stream<R, const N: usize>(pub StreamDecoder<R, N>);
+
+impl<R, const N: usize> Stream<R, N> {
+    /// A boxed engine around `decoder`.
+    pub fn boxed(decoder: StreamDecoder<R, N>) -> Box<dyn Engine>
+    where
+        Self: Engine + 'static,
+    {
+        Box::new(Stream(decoder))
+    }
+}
+
+impl<R, const N: usize> Engine for Stream<R, N>
+where
+    R: FrameRules + Send + Sync,
+    R::Owned: Serialize,
+    R::Error: Serialize,
+{
+    fn feed(&mut self, data: &[u8], errors: bool, out: &Bound<'_, PyList>) -> PyResult<()> {
+        let mut input = data;
+        let mut result = Ok(());
+        while let Some(event) = self.0.decode(&mut input) {
+            if result.is_ok() {
+                result = append::<R>(out, owned_event::<R>(event), errors);
+            }
+        }
+        result
+    }
+
+    fn finish(&mut self, errors: bool, out: &Bound<'_, PyList>) -> PyResult<()> {
+        let mut result = Ok(());
+        while let Some(event) = self.0.finish() {
+            if result.is_ok() {
+                result = append::<R>(out, owned_event::<R>(event), errors);
+            }
+        }
+        result
+    }
+
+    fn stats(&self) -> Stats {
+        self.0.stats()
+    }
+
+    fn buffered(&self) -> usize {
+        self.0.buffered()
+    }
+
+    fn clear(&mut self) {
+        self.0.clear();
+    }
+}
+
+/// Append one owned event to `out` as a dict in the JSON-lines schema.
+pub fn append<R: FrameRules>(
+    out: &Bound<'_, PyList>,
+    event: OwnedEvent<R>,
+    errors: bool,
+) -> PyResult<()>
+where
+    R::Owned: Serialize,
+    R::Error: Serialize,
+{
+    let item = match event {
+        Ok(frame) => to_python(out.py(), &frame)?,
+        Err(rejected) if errors => to_python(out.py(), &rejected)?,
+        Err(_) => return Ok(()),
+    };
+    out.append(item)
+}
+
+/// Pythonize a serde value (dicts, lists, ints, floats, strings, None).
+pub fn to_python<'py, T: Serialize + ?Sized>(
+    py: Python<'py>,
+    value: &T,
+) -> PyResult<Bound<'py, PyAny>> {
+    pythonize(py, &Adapt(value)).map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
+/// The bytes of a `bytes`, `bytearray` or `memoryview` (or any object with a
+/// `tobytes()`), refusing `str` and `int` (which `bytes()` would accept).
+pub fn with_bytes<T>(data: &Bound<'_, PyAny>, f: impl FnOnce(&[u8]) -> T) -> PyResult<T> {
+    if let Ok(bytes) = data.cast::<PyBytes>() {
+        return Ok(f(bytes.as_bytes()));
+    }
+    if let Ok(array) = data.cast::<PyByteArray>() {
+        return Ok(f(&array.to_vec()));
+    }
+    if !data.is_instance_of::<PyString>() && data.hasattr("tobytes")? {
+        let copy = data.call_method0("tobytes")?;
+        if let Ok(bytes) = copy.cast::<PyBytes>() {
+            return Ok(f(bytes.as_bytes()));
+        }
+    }
+    Err(PyTypeError::new_err(format!(
+        "expected bytes, bytearray or memoryview, got {}",
+        data.get_type().name()?
+    )))
+}
+
+/// The counters as a dict: `bytes`, `frames`, `frame_bytes`, `skipped`,
+/// `checksum_errors`, `rejected`, `malformed`, `superseded`.
+pub fn stats_dict<'py>(py: Python<'py>, stats: &Stats) -> PyResult<Bound<'py, PyDict>> {
+    Ok(to_python(py, stats)?.cast_into::<PyDict>()?)
+}
+
+/// A `ValueError` for an option value that is not one of `allowed`.
+pub fn bad_choice(option: &str, value: &str, allowed: &[&str]) -> PyErr {
+    PyValueError::new_err(format!(
+        "{option} must be one of {}, not {value:?}",
+        allowed
+            .iter()
+            .map(|a| format!("{a:?}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ))
+}
+
+/// Read `message` (a mapping in the JSON-lines schema) into `M`, validating
+/// as the library's `Deserialize` does, and encode it with `write`. Both
+/// kinds of failure are a `ValueError` with the library's message.
+pub fn encode_with<'py, M: DeserializeOwned>(
+    message: &Bound<'py, PyAny>,
+    write: impl FnOnce(&M) -> Result<Vec<u8>, String>,
+) -> PyResult<Bound<'py, PyBytes>> {
+    if !message.is_instance_of::<PyDict>() && message.cast::<PyMapping>().is_err() {
+        return Err(PyTypeError::new_err(format!(
+            "expected a message (a dict in the JSON-lines schema), got {}",
+            message.get_type().name()?
+        )));
+    }
+    let value: M = depythonize(message).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let frame = write(&value).map_err(PyValueError::new_err)?;
+    Ok(PyBytes::new(message.py(), &frame))
+}
+
+/// A message's frame through its [`Encode`] implementation.
+pub fn encode_frame<M: Encode>(message: &M) -> Result<Vec<u8>, String> {
+    let mut frame = vec![0; message.encoded_len()];
+    let n = message.encode(&mut frame).map_err(|e| e.to_string())?;
+    frame.truncate(n);
+    Ok(frame)
+}

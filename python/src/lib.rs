@@ -1,0 +1,35 @@
+//! robowire's decoders and encoders for Python: the extension module
+//! `robowire._robowire`, re-exported by the pure-Python package `robowire`.
+//!
+//! One generic binding ([`engine`]) drives robowire's stream engine for every
+//! protocol and turns each event into a dict by pythonizing the library's own
+//! serde form (the `robowire` tool's JSON-lines schema).
+
+mod decoder;
+mod engine;
+mod omnitiles;
+mod schema;
+
+use pyo3::prelude::*;
+
+/// Add `sub` to `parent` and register it as `robowire.<name>` so that
+/// `import robowire._robowire.<name>` style imports work too.
+fn add_submodule(parent: &Bound<'_, PyModule>, sub: &Bound<'_, PyModule>) -> PyResult<()> {
+    parent.add_submodule(sub)?;
+    let name = sub.name()?;
+    parent
+        .py()
+        .import("sys")?
+        .getattr("modules")?
+        .set_item(format!("robowire._robowire.{name}"), sub)?;
+    Ok(())
+}
+
+#[pymodule]
+fn _robowire(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add_class::<decoder::PyStreamDecoder>()?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    add_submodule(m, &omnitiles::module(py)?)?;
+    Ok(())
+}
