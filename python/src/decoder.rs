@@ -64,6 +64,16 @@ impl PyStreamDecoder {
         Ok(out)
     }
 
+    /// _count(data, /)
+    /// --
+    ///
+    /// Decode ``data`` as :meth:`feed` does but build no items: the number of
+    /// frames decoded. For benchmarks (the cost of the items is the
+    /// difference).
+    fn _count(&mut self, data: &Bound<'_, PyAny>) -> PyResult<usize> {
+        with_bytes(data, |bytes| self.engine.count(bytes))
+    }
+
     /// clear()
     /// --
     ///

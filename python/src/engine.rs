@@ -24,6 +24,9 @@ pub trait Engine: Send + Sync {
     fn feed(&mut self, data: &[u8], errors: bool, out: &Bound<'_, PyList>) -> PyResult<()>;
     /// End of input: resolve what is buffered, appending the events to `out`.
     fn finish(&mut self, errors: bool, out: &Bound<'_, PyList>) -> PyResult<()>;
+    /// Decode `data` without building any Python object; the number of
+    /// frames parsed (what a benchmark compares the full path with).
+    fn count(&mut self, data: &[u8]) -> usize;
     /// The counters so far.
     fn stats(&self) -> Stats;
     /// Bytes held as the start of an unfinished candidate.
@@ -70,6 +73,15 @@ where
             }
         }
         result
+    }
+
+    fn count(&mut self, data: &[u8]) -> usize {
+        let mut input = data;
+        let mut frames = 0;
+        while let Some(event) = self.0.decode(&mut input) {
+            frames += usize::from(event.is_ok());
+        }
+        frames
     }
 
     fn stats(&self) -> Stats {
