@@ -4,7 +4,7 @@
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::engine::{stats_dict, with_bytes, Engine};
+use crate::engine::{stats_dict, with_bytes, Engine, Items};
 
 /// The stream decoder every protocol's ``Decoder`` is: feed it bytes as they
 /// arrive, in chunks of any size, and it returns the decoded items.
@@ -15,23 +15,24 @@ use crate::engine::{stats_dict, with_bytes, Engine};
 /// (``type`` first). With ``errors=True``, rejected candidates are items too:
 /// ``offset`` then the error's keys (``error`` first, no ``type``). The items
 /// never depend on how the bytes were split; call :meth:`finish` at the end of
-/// the input to resolve a frame cut short.
+/// the input to resolve a frame cut short. With ``lazy=True`` the items are
+/// :class:`robowire.Item` mappings that build their dict only when read.
 ///
 /// Construct a protocol's subclass (``robowire.omnitiles.Decoder``, ...), not
 /// this class.
 #[pyclass(module = "robowire", subclass, name = "StreamDecoder")]
 pub struct PyStreamDecoder {
     engine: Box<dyn Engine>,
-    errors: bool,
+    items: Items,
     repr: String,
 }
 
 impl PyStreamDecoder {
     /// A decoder around `engine`; `repr` is what `repr()` shows.
-    pub fn new(engine: Box<dyn Engine>, errors: bool, repr: String) -> Self {
+    pub fn new(engine: Box<dyn Engine>, items: Items, repr: String) -> Self {
         Self {
             engine,
-            errors,
+            items,
             repr,
         }
     }
@@ -47,7 +48,7 @@ impl PyStreamDecoder {
     /// A frame cut by the end of the chunk is kept and completed by the next.
     fn feed<'py>(&mut self, data: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(data.py());
-        with_bytes(data, |bytes| self.engine.feed(bytes, self.errors, &out))??;
+        with_bytes(data, |bytes| self.engine.feed(bytes, self.items, &out))??;
         Ok(out)
     }
 
@@ -60,7 +61,7 @@ impl PyStreamDecoder {
     /// stream; offsets and counters carry on.
     fn finish<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(py);
-        self.engine.finish(self.errors, &out)?;
+        self.engine.finish(self.items, &out)?;
         Ok(out)
     }
 
@@ -102,7 +103,14 @@ impl PyStreamDecoder {
     /// Whether rejected candidates are returned as items.
     #[getter]
     fn errors(&self) -> bool {
-        self.errors
+        self.items.errors
+    }
+
+    /// Whether items are :class:`robowire.Item` objects that build their
+    /// dict when read, rather than dicts.
+    #[getter]
+    fn lazy(&self) -> bool {
+        self.items.lazy
     }
 
     fn __repr__(&self) -> String {

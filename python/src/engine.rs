@@ -15,15 +15,15 @@ use robowire::{Encode, Stats};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
+use crate::item::{Erased, Item};
 use crate::schema::Adapt;
 
 /// A stream decoder of any protocol, as the Python classes use it.
 pub trait Engine: Send + Sync {
-    /// Decode `data`, appending the events to `out` (rejections only when
-    /// `errors`). All of `data` is taken even if appending fails.
-    fn feed(&mut self, data: &[u8], errors: bool, out: &Bound<'_, PyList>) -> PyResult<()>;
+    /// Decode `data`, appending the events to `out` as `items` says. All of `data` is taken even if appending fails.
+    fn feed(&mut self, data: &[u8], items: Items, out: &Bound<'_, PyList>) -> PyResult<()>;
     /// End of input: resolve what is buffered, appending the events to `out`.
-    fn finish(&mut self, errors: bool, out: &Bound<'_, PyList>) -> PyResult<()>;
+    fn finish(&mut self, items: Items, out: &Bound<'_, PyList>) -> PyResult<()>;
     /// Decode `data` without building any Python object; the number of
     /// frames parsed (what a benchmark compares the full path with).
     fn count(&mut self, data: &[u8]) -> usize;
@@ -51,25 +51,25 @@ impl<R, const N: usize> Stream<R, N> {
 impl<R, const N: usize> Engine for Stream<R, N>
 where
     R: FrameRules + Send + Sync,
-    R::Owned: Serialize,
-    R::Error: Serialize,
+    R::Owned: Serialize + Send + Sync + 'static,
+    R::Error: Serialize + Send + Sync + 'static,
 {
-    fn feed(&mut self, data: &[u8], errors: bool, out: &Bound<'_, PyList>) -> PyResult<()> {
+    fn feed(&mut self, data: &[u8], items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
         let mut input = data;
         let mut result = Ok(());
         while let Some(event) = self.0.decode(&mut input) {
             if result.is_ok() {
-                result = append::<R>(out, owned_event::<R>(event), errors);
+                result = append::<R>(out, owned_event::<R>(event), items);
             }
         }
         result
     }
 
-    fn finish(&mut self, errors: bool, out: &Bound<'_, PyList>) -> PyResult<()> {
+    fn finish(&mut self, items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
         let mut result = Ok(());
         while let Some(event) = self.0.finish() {
             if result.is_ok() {
-                result = append::<R>(out, owned_event::<R>(event), errors);
+                result = append::<R>(out, owned_event::<R>(event), items);
             }
         }
         result
@@ -97,22 +97,51 @@ where
     }
 }
 
-/// Append one owned event to `out` as a dict in the JSON-lines schema.
+/// How a decoder hands out its events.
+#[derive(Debug, Clone, Copy)]
+pub struct Items {
+    /// Rejections are items too.
+    pub errors: bool,
+    /// Items are [`Item`]s that build their dict when read, not dicts.
+    pub lazy: bool,
+}
+
+impl Items {
+    /// The options as `repr()` shows them: `, errors=True, lazy=True`.
+    pub fn describe(self) -> String {
+        let mut text = String::new();
+        if self.errors {
+            text.push_str(", errors=True");
+        }
+        if self.lazy {
+            text.push_str(", lazy=True");
+        }
+        text
+    }
+}
+
+/// Append one owned event to `out`: a dict in the JSON-lines schema, or an
+/// [`Item`] that builds it when read.
 pub fn append<R: FrameRules>(
     out: &Bound<'_, PyList>,
     event: OwnedEvent<R>,
-    errors: bool,
+    items: Items,
 ) -> PyResult<()>
 where
-    R::Owned: Serialize,
-    R::Error: Serialize,
+    R::Owned: Serialize + Send + Sync + 'static,
+    R::Error: Serialize + Send + Sync + 'static,
 {
-    let item = match event {
-        Ok(frame) => to_python(out.py(), &frame)?,
-        Err(rejected) if errors => to_python(out.py(), &rejected)?,
-        Err(_) => return Ok(()),
+    let py = out.py();
+    let erased: Box<dyn Erased> = match event {
+        Ok(frame) if !items.lazy => return out.append(to_python(py, &frame)?),
+        Err(rejected) if items.errors && !items.lazy => {
+            return out.append(to_python(py, &rejected)?)
+        }
+        Err(_) if !items.errors => return Ok(()),
+        Ok(frame) => Box::new(frame),
+        Err(rejected) => Box::new(rejected),
     };
-    out.append(item)
+    out.append(Bound::new(py, Item::new(erased))?)
 }
 
 /// Pythonize a serde value (dicts, lists, ints, floats, strings, None).

@@ -7,6 +7,7 @@
 
 mod decoder;
 mod engine;
+mod item;
 mod omnitiles;
 mod schema;
 
@@ -29,6 +30,7 @@ fn add_submodule(parent: &Bound<'_, PyModule>, sub: &Bound<'_, PyModule>) -> PyR
 fn _robowire(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_class::<decoder::PyStreamDecoder>()?;
+    m.add_class::<item::Item>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     add_submodule(m, &omnitiles::module(py)?)?;
     Ok(())

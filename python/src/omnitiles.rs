@@ -7,7 +7,7 @@ use robowire::omnitiles::{Decoder, Framing, Layout, Layouts, Packet};
 
 use crate::decoder::PyStreamDecoder;
 use crate::engine::{
-    append, bad_choice, encode_frame, encode_with, stats_dict, with_bytes, Stream,
+    append, bad_choice, encode_frame, encode_with, stats_dict, with_bytes, Items, Stream,
 };
 
 const SOURCES: &[&str] = &["tile", "host", "any"];
@@ -60,7 +60,7 @@ fn framing(source: &str, layouts: Option<&Bound<'_, PyAny>>) -> PyResult<Framing
     }
 }
 
-fn describe(class: &str, source: &str, layouts: Option<&Bound<'_, PyAny>>, errors: bool) -> String {
+fn describe(class: &str, source: &str, layouts: Option<&Bound<'_, PyAny>>, items: Items) -> String {
     let layouts = layouts
         .map(|l| {
             format!(
@@ -69,8 +69,10 @@ fn describe(class: &str, source: &str, layouts: Option<&Bound<'_, PyAny>>, error
             )
         })
         .unwrap_or_default();
-    let errors = if errors { ", errors=True" } else { "" };
-    format!("robowire.omnitiles.{class}(source={source:?}{layouts}{errors})")
+    format!(
+        "robowire.omnitiles.{class}(source={source:?}{layouts}{})",
+        items.describe()
+    )
 }
 
 /// Decoder(source="any", layouts=None, errors=False)
@@ -99,19 +101,19 @@ pub struct OmniDecoder;
 #[pymethods]
 impl OmniDecoder {
     #[new]
-    #[pyo3(signature = (source = "any", layouts = None, errors = false))]
+    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false))]
     fn new(
         source: &str,
         layouts: Option<&Bound<'_, PyAny>>,
         errors: bool,
+        lazy: bool,
     ) -> PyResult<PyClassInitializer<Self>> {
         let framing = framing(source, layouts)?;
         let engine = Stream::boxed(Decoder::new(framing));
-        let repr = describe("Decoder", source, layouts, errors);
-        Ok(
-            PyClassInitializer::from(PyStreamDecoder::new(engine, errors, repr))
-                .add_subclass(OmniDecoder),
-        )
+        let items = Items { errors, lazy };
+        let repr = describe("Decoder", source, layouts, items);
+        let base = PyStreamDecoder::new(engine, items, repr);
+        Ok(PyClassInitializer::from(base).add_subclass(OmniDecoder))
     }
 }
 
@@ -132,20 +134,26 @@ impl OmniDecoder {
 #[pyclass(module = "robowire.omnitiles", name = "DatagramDecoder")]
 pub struct OmniDatagramDecoder {
     inner: robowire::omnitiles::DatagramDecoder,
-    errors: bool,
+    items: Items,
     repr: String,
 }
 
 #[pymethods]
 impl OmniDatagramDecoder {
     #[new]
-    #[pyo3(signature = (source = "tile", layouts = None, errors = false))]
-    fn new(source: &str, layouts: Option<&Bound<'_, PyAny>>, errors: bool) -> PyResult<Self> {
+    #[pyo3(signature = (source = "tile", layouts = None, errors = false, lazy = false))]
+    fn new(
+        source: &str,
+        layouts: Option<&Bound<'_, PyAny>>,
+        errors: bool,
+        lazy: bool,
+    ) -> PyResult<Self> {
         let framing = framing(source, layouts)?;
+        let items = Items { errors, lazy };
         Ok(Self {
             inner: robowire::omnitiles::DatagramDecoder::new(framing),
-            errors,
-            repr: describe("DatagramDecoder", source, layouts, errors),
+            items,
+            repr: describe("DatagramDecoder", source, layouts, items),
         })
     }
 
@@ -156,12 +164,12 @@ impl OmniDatagramDecoder {
     /// ``memoryview``), in order.
     fn decode<'py>(&mut self, datagram: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(datagram.py());
-        let errors = self.errors;
+        let items = self.items;
         with_bytes(datagram, |bytes| {
             let mut result = Ok(());
             for event in self.inner.decode(bytes) {
                 if result.is_ok() {
-                    result = append::<Framing>(&out, event, errors);
+                    result = append::<Framing>(&out, event, items);
                 }
             }
             result
@@ -179,7 +187,13 @@ impl OmniDatagramDecoder {
     /// Whether rejected candidates are returned as items.
     #[getter]
     fn errors(&self) -> bool {
-        self.errors
+        self.items.errors
+    }
+
+    /// Whether items are :class:`robowire.Item` objects.
+    #[getter]
+    fn lazy(&self) -> bool {
+        self.items.lazy
     }
 
     fn __repr__(&self) -> String {

@@ -1,0 +1,173 @@
+//! `robowire.Item`: a decoded item kept in Rust until Python reads it, for
+//! decoders made with `lazy=True`.
+
+use pyo3::basic::CompareOp;
+use pyo3::exceptions::PyKeyError;
+use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyDict, PyIterator};
+use robowire::stream::{OwnedFrame, Rejected};
+use serde::Serialize;
+
+use crate::engine::to_python;
+
+/// A frame or a rejection, type-erased.
+pub trait Erased: Send + Sync {
+    /// Offset of the first byte in the stream.
+    fn offset(&self) -> u64;
+    /// The item as a dict in the JSON-lines schema.
+    fn to_python<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>>;
+}
+
+impl<M: Serialize + Send + Sync> Erased for OwnedFrame<M> {
+    fn offset(&self) -> u64 {
+        self.offset
+    }
+
+    fn to_python<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, self)
+    }
+}
+
+impl<E: Serialize + Send + Sync> Erased for Rejected<E> {
+    fn offset(&self) -> u64 {
+        self.offset
+    }
+
+    fn to_python<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, self)
+    }
+}
+
+/// A decoded item that builds its dict only when it is first read: what a
+/// decoder made with ``lazy=True`` returns. It is a read-only mapping with
+/// the same keys and values as the dict a default decoder returns
+/// (``item["type"]``, ``item.get("tof")``, ``dict(item)``, ``item ==
+/// {...}``); :meth:`to_dict` gives a plain dict. Items that are never read
+/// cost almost nothing, so a host that looks at one frame in a hundred, or
+/// only at :attr:`offset`, goes several times faster.
+#[pyclass(module = "robowire", name = "Item", frozen, mapping)]
+pub struct Item {
+    event: Box<dyn Erased>,
+    dict: PyOnceLock<Py<PyDict>>,
+}
+
+impl Item {
+    /// An item around `event`.
+    pub fn new(event: Box<dyn Erased>) -> Self {
+        Self {
+            event,
+            dict: PyOnceLock::new(),
+        }
+    }
+
+    fn dict<'py>(&self, py: Python<'py>) -> PyResult<&Bound<'py, PyDict>> {
+        let dict = self.dict.get_or_try_init(py, || {
+            self.event
+                .to_python(py)
+                .and_then(|d| Ok(d.cast_into::<PyDict>()?.unbind()))
+        })?;
+        Ok(dict.bind(py))
+    }
+}
+
+#[pymethods]
+impl Item {
+    /// Offset of the item's first byte in the stream (no dict is built).
+    #[getter]
+    fn offset(&self) -> u64 {
+        self.event.offset()
+    }
+
+    /// to_dict()
+    /// --
+    ///
+    /// The item as a new plain dict in the JSON-lines schema.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.dict(py)?.copy()
+    }
+
+    /// get(key, default=None, /)
+    /// --
+    ///
+    /// The value of ``key``, or ``default`` where the item has no such key.
+    #[pyo3(signature = (key, default = None))]
+    fn get<'py>(
+        &self,
+        py: Python<'py>,
+        key: &Bound<'py, PyAny>,
+        default: Option<Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        Ok(match self.dict(py)?.get_item(key)? {
+            Some(value) => value,
+            None => default.unwrap_or_else(|| py.None().into_bound(py)),
+        })
+    }
+
+    /// keys()
+    /// --
+    ///
+    /// The keys, in schema order (``offset`` first).
+    fn keys<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.dict(py)?.call_method0("keys")
+    }
+
+    /// values()
+    /// --
+    ///
+    /// The values, in schema order.
+    fn values<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.dict(py)?.call_method0("values")
+    }
+
+    /// items()
+    /// --
+    ///
+    /// The ``(key, value)`` pairs, in schema order.
+    fn items<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.dict(py)?.call_method0("items")
+    }
+
+    fn __getitem__<'py>(
+        &self,
+        py: Python<'py>,
+        key: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.dict(py)?
+            .get_item(key)?
+            .ok_or_else(|| PyKeyError::new_err(key.clone().unbind()))
+    }
+
+    fn __contains__(&self, py: Python<'_>, key: &Bound<'_, PyAny>) -> PyResult<bool> {
+        self.dict(py)?.contains(key)
+    }
+
+    fn __len__(&self, py: Python<'_>) -> PyResult<usize> {
+        Ok(self.dict(py)?.len())
+    }
+
+    fn __iter__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyIterator>> {
+        self.dict(py)?.as_any().try_iter()
+    }
+
+    fn __richcmp__<'py>(
+        &self,
+        py: Python<'py>,
+        other: &Bound<'py, PyAny>,
+        op: CompareOp,
+    ) -> PyResult<Py<PyAny>> {
+        let other = match other.cast::<Item>() {
+            Ok(item) => item.get().dict(py)?.clone().into_any(),
+            Err(_) if other.is_instance_of::<PyDict>() => other.clone(),
+            Err(_) => return Ok(py.NotImplemented()),
+        };
+        match op {
+            CompareOp::Eq | CompareOp::Ne => Ok(self.dict(py)?.rich_compare(other, op)?.unbind()),
+            _ => Ok(py.NotImplemented()),
+        }
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        Ok(format!("Item({})", self.dict(py)?.repr()?))
+    }
+}
