@@ -9,11 +9,24 @@ Three protocols, one API, backed by robowire's Rust codecs:
 Each has a stream ``Decoder`` (a :class:`StreamDecoder`: ``feed(data) -> list``,
 ``finish() -> list``, ``stats``) and ``encode(message) -> bytes``. Decoded
 items and messages to encode are dicts in the JSON-lines schema of the
-``robowire`` command-line tool: ``{"offset": 0, "len": 4, "type":
-"m1_extend", "speed": 200}``.
+``robowire`` command-line tool::
+
+    >>> from robowire import omnitiles
+    >>> decoder = omnitiles.Decoder(source="host")
+    >>> decoder.feed(bytes.fromhex("a5 30 c8 f8 a5 50 50"))
+    [{'offset': 0, 'len': 4, 'type': 'm1_extend', 'speed': 200}, {'offset': 4, 'len': 3, 'type': 'ping'}]
+    >>> omnitiles.encode({"type": "m1_extend", "speed": 200}).hex(" ")
+    'a5 30 c8 f8'
+
+A decoder made with ``lazy=True`` returns :class:`Item` mappings instead, which
+build their dict only when read.
 """
 
-from ._robowire import StreamDecoder, __version__
-from . import omnitiles
+from collections.abc import Mapping as _Mapping
 
-__all__ = ["StreamDecoder", "omnitiles", "pixy2", "telemetrix", "__version__"]
+from ._robowire import Item, StreamDecoder, __version__
+from . import omnitiles, pixy2, telemetrix
+
+_Mapping.register(Item)
+
+__all__ = ["Item", "StreamDecoder", "omnitiles", "pixy2", "telemetrix", "__version__"]

@@ -1,0 +1,65 @@
+"""The compiled core of :mod:`robowire` (import from ``robowire`` instead)."""
+
+from collections.abc import Iterator, KeysView, ItemsView, Mapping, ValuesView
+from typing import Any, Union
+
+from . import omnitiles as omnitiles, pixy2 as pixy2, telemetrix as telemetrix
+
+__version__: str
+
+Bytes = Union[bytes, bytearray, memoryview]
+"""What the decoders take: ``bytes``, ``bytearray`` or ``memoryview``."""
+
+class Item(Mapping[str, Any]):
+    """A decoded item that builds its dict only when first read (``lazy=True``).
+
+    A read-only mapping with exactly the keys and values of the dict a default
+    decoder returns; equal to that dict.
+    """
+
+    @property
+    def offset(self) -> int:
+        """Offset of the item's first byte in the stream (builds no dict)."""
+    def to_dict(self) -> dict[str, Any]:
+        """The item as a new plain dict in the JSON-lines schema."""
+    def get(self, key: str, default: Any = None, /) -> Any: ...
+    def keys(self) -> KeysView[str]: ...
+    def values(self) -> ValuesView[Any]: ...
+    def items(self) -> ItemsView[str, Any]: ...
+    def __getitem__(self, key: str, /) -> Any: ...
+    def __iter__(self) -> Iterator[str]: ...
+    def __len__(self) -> int: ...
+
+Decoded = Mapping[str, Any]
+"""A decoded item: a dict in the JSON-lines schema, or an :class:`Item`."""
+
+class StreamDecoder:
+    """The stream decoder every protocol's ``Decoder`` is.
+
+    Feed it bytes as they arrive, in chunks of any size; it returns the
+    decoded items, each a dict in the ``robowire`` tool's JSON-lines schema
+    (``offset``, ``len``, then the message's keys; with ``errors=True`` also
+    rejections: ``offset``, then ``error`` and its keys).
+    """
+
+    def feed(self, data: Bytes, /) -> list[Decoded]:
+        """Decode the next chunk; the items it completes, in stream order."""
+    def finish(self) -> list[Decoded]:
+        """End of input: the items a buffered partial frame resolves to."""
+    def clear(self) -> None:
+        """Forget a buffered partial frame (its bytes count as skipped)."""
+    def _count(self, data: Bytes, /) -> int:
+        """Decode as :meth:`feed` does, building no items; the frames decoded."""
+    @property
+    def stats(self) -> dict[str, int]:
+        """Counters: bytes, frames, frame_bytes, skipped, checksum_errors,
+        rejected, malformed, superseded."""
+    @property
+    def buffered(self) -> int:
+        """Bytes held as the start of an unfinished frame."""
+    @property
+    def errors(self) -> bool:
+        """Whether rejected candidates are returned as items."""
+    @property
+    def lazy(self) -> bool:
+        """Whether items are :class:`Item` objects rather than dicts."""

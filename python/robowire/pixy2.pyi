@@ -1,0 +1,34 @@
+"""Pixy2: host requests and device responses (``ae c1`` / ``af c1`` frames)."""
+
+from collections.abc import Mapping
+from typing import Any, Literal
+
+from ._robowire import Bytes, Decoded, StreamDecoder
+
+Source = Literal["host", "device", "any"]
+
+__all__ = ["Decoder", "encode"]
+
+class Decoder(StreamDecoder):
+    """The Pixy2 stream decoder.
+
+    ``source``: ``"device"`` (responses only: what a host reads), ``"host"``
+    (requests only, held to the device's 64-byte receive limit) or ``"any"``.
+    ``checksum_only=True`` accepts only the checksum form (``af c1``), as a
+    Pixy2 always answers.
+    """
+
+    def __init__(
+        self,
+        source: Source = "any",
+        checksum_only: bool = False,
+        errors: bool = False,
+        lazy: bool = False,
+    ) -> None: ...
+
+def encode(message: Mapping[str, Any], /) -> bytes:
+    """The frame of one request or response (a dict in the JSON-lines schema).
+
+    ``checksum`` (``True`` for ``af c1``) picks the frame form. Raises
+    ``ValueError`` naming the field and its range if it is invalid.
+    """

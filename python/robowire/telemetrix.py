@@ -1,0 +1,22 @@
+"""Telemetrix4RpiPico: host commands and Pico reports (LEN, id, payload).
+
+* :class:`Decoder` -- the stream decoder for a serial link or a capture;
+* :func:`encode` -- a message dict to its frame, for a firmware dialect.
+
+Items and messages are dicts in the ``robowire`` tool's JSON-lines schema::
+
+    {"offset": 0, "len": 4, "type": "firmware_version", "major": 1, "minor": 3}
+    {"offset": 4, "len": 5, "type": "analog_report", "pin": 26, "value": 1225}
+    {"offset": 9, "len": 6, "type": "sonar_distance", "trig": 9, "echo": 10, "cm": 119}
+
+Dialects: ``mirte13`` (mirte firmware 1.3, the default), ``mirte12``,
+``upstream11``. Run ``robowire decode telemetrix --help`` for every type and
+field.
+"""
+
+from ._robowire import telemetrix as _native
+
+Decoder = _native.Decoder
+encode = _native.encode
+
+__all__ = ["Decoder", "encode"]
