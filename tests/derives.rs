@@ -497,8 +497,9 @@ fn serde_pixy2_owned_features_response() {
     );
     let err = serde_json::from_str::<FeaturesBuf>(&seven).unwrap_err();
     assert!(
-        err.to_string()
-            .starts_with("field `sections[0].intersections[0].lines` holds 7 entries, at most 6 fit"),
+        err.to_string().starts_with(
+            "field `sections[0].intersections[0].lines` holds 7 entries, at most 6 fit"
+        ),
         "{err}"
     );
     let err = serde_json::from_str::<FeaturesBuf>(r#"[{"ftype":2,"data":[]}]"#).unwrap_err();
