@@ -493,7 +493,7 @@ fn serde_pixy2_owned_features_response() {
     // What a features payload cannot hold is refused, naming the field.
     let seven = format!(
         r#"[{{"intersections":[{{"x":1,"y":2,"lines":[{}]}}]}}]"#,
-        vec![r#"{"index":1,"angle":0}"#; 7].join(",")
+        [r#"{"index":1,"angle":0}"#; 7].join(",")
     );
     let err = serde_json::from_str::<FeaturesBuf>(&seven).unwrap_err();
     assert!(
