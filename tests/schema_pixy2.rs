@@ -277,6 +277,9 @@ fn every_kind_serializes_as_the_command_line_prints_it() {
                 seen.push(response.as_response().name());
             }
         }
+        // `type` is the message's name.
+        let value: serde_json::Value = serde_json::from_str(line).unwrap();
+        assert_eq!(value["type"], *seen.last().unwrap(), "{line}");
         let message = serde_json::to_string(&envelope.body).unwrap();
         assert_eq!(message, without_checksum(line));
         assert_eq!(
