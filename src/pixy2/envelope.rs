@@ -22,15 +22,15 @@ use super::wire::{encode_body, Body, Form, DEVICE_MAX_PAYLOAD, MAX_FRAME_LEN, MA
 /// use robowire::pixy2::{Envelope, Form, GetFps, Request};
 /// use robowire::Encode;
 ///
+/// let fps = Envelope::new(Form::Checksum, Request::from(GetFps));
 /// let mut out = [0u8; 8];
-/// let n = Envelope::new(Form::Checksum, Request::from(GetFps)).encode(&mut out)?;
+/// let n = fps.encode(&mut out)?;
 /// assert_eq!(&out[..n], &[0xaf, 0xc1, 0x18, 0x00, 0x00, 0x00]);
 ///
 /// // One whole frame, sync word included, parses back.
-/// let envelope = Envelope::<Request>::try_from(&out[..n])?;
-/// assert_eq!(envelope, Envelope::new(Form::Checksum, Request::from(GetFps)));
-/// assert_eq!(envelope.to_string(), "get_fps checksum=true");
-/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// assert_eq!(Envelope::try_from(&out[..n]), Ok(fps));
+/// assert_eq!(fps.to_string(), "get_fps checksum=true");
+/// # Ok::<(), robowire::EncodeError>(())
 /// ```
 ///
 /// With the `serde` feature an envelope is its message's JSON object with

@@ -86,8 +86,8 @@
 //! let get = Envelope::new(Form::NoChecksum, Request::from(GetBlocks { sigmap: 255, max_blocks: 3 }));
 //! let line = r#"{"type":"get_blocks","checksum":false,"sigmap":255,"max_blocks":3}"#;
 //! assert_eq!(serde_json::to_string(&get).unwrap(), line);
-//! let back: Envelope<MessageBuf> = serde_json::from_str(line).unwrap();
-//! assert_eq!(back, Envelope::new(Form::NoChecksum, MessageBuf::Request(get.body)));
+//! let back = Envelope::new(Form::NoChecksum, MessageBuf::Request(get.body));
+//! assert_eq!(serde_json::from_str(line).ok(), Some(back));
 //! # }
 //! ```
 //!
