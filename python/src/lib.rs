@@ -9,6 +9,7 @@ mod decoder;
 mod engine;
 mod item;
 mod omnitiles;
+mod pixy2;
 mod schema;
 
 use pyo3::prelude::*;
@@ -33,5 +34,6 @@ fn _robowire(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<item::Item>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     add_submodule(m, &omnitiles::module(py)?)?;
+    add_submodule(m, &pixy2::module(py)?)?;
     Ok(())
 }
