@@ -198,15 +198,21 @@ pub fn encode_with<'py, M: DeserializeOwned>(
     message: &Bound<'py, PyAny>,
     write: impl FnOnce(&M) -> Result<Vec<u8>, String>,
 ) -> PyResult<Bound<'py, PyBytes>> {
-    if !message.is_instance_of::<PyDict>() && message.cast::<PyMapping>().is_err() {
-        return Err(PyTypeError::new_err(format!(
-            "expected a message (a dict in the JSON-lines schema), got {}",
-            message.get_type().name()?
-        )));
-    }
+    check_mapping(message)?;
     let value: M = depythonize(message).map_err(|e| PyValueError::new_err(e.to_string()))?;
     let frame = write(&value).map_err(PyValueError::new_err)?;
     Ok(PyBytes::new(message.py(), &frame))
+}
+
+/// A `TypeError` unless `message` is a dict or another mapping.
+pub fn check_mapping(message: &Bound<'_, PyAny>) -> PyResult<()> {
+    if message.is_instance_of::<PyDict>() || message.cast::<PyMapping>().is_ok() {
+        return Ok(());
+    }
+    Err(PyTypeError::new_err(format!(
+        "expected a message (a dict in the JSON-lines schema), got {}",
+        message.get_type().name()?
+    )))
 }
 
 /// A message's frame through its [`Encode`] implementation.
