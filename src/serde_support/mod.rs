@@ -61,6 +61,9 @@ impl<'de> Visitor<'de> for BytesInto<'_> {
     }
 }
 
+mod events;
+mod prefixed;
+
 // Until every protocol's messages read through it, parts are unused.
 #[allow(dead_code)]
 mod reader;

@@ -292,3 +292,89 @@ mod tests {
         );
     }
 }
+
+/// A [`Value`] is itself a deserializer, so a reader can hand any part of it
+/// to a derived `Deserialize` impl (and the stream's frame types can peel off
+/// `offset` and `len` and pass the rest to the message).
+impl<'de> Deserializer<'de> for Value {
+    type Error = de::value::Error;
+
+    fn deserialize_any<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, Self::Error> {
+        match self {
+            Value::Null => visitor.visit_unit(),
+            Value::Bool(b) => visitor.visit_bool(b),
+            Value::U64(n) => visitor.visit_u64(n),
+            Value::I64(n) => visitor.visit_i64(n),
+            Value::F64(x) => visitor.visit_f64(x),
+            Value::Str(s) => visitor.visit_string(s),
+            Value::Seq(items) => {
+                let mut seq = de::value::SeqDeserializer::new(items.into_iter());
+                let value = visitor.visit_seq(&mut seq)?;
+                seq.end()?;
+                Ok(value)
+            }
+            Value::Map(members) => {
+                let mut map = de::value::MapDeserializer::new(members.into_iter());
+                let value = visitor.visit_map(&mut map)?;
+                map.end()?;
+                Ok(value)
+            }
+        }
+    }
+
+    fn deserialize_option<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, Self::Error> {
+        match self {
+            Value::Null => visitor.visit_none(),
+            other => visitor.visit_some(other),
+        }
+    }
+
+    fn deserialize_enum<V: Visitor<'de>>(
+        self,
+        _name: &'static str,
+        _variants: &'static [&'static str],
+        visitor: V,
+    ) -> Result<V::Value, Self::Error> {
+        match self {
+            // A unit variant by name.
+            Value::Str(s) => {
+                visitor.visit_enum(de::IntoDeserializer::<Self::Error>::into_deserializer(s))
+            }
+            other => other.deserialize_any(visitor),
+        }
+    }
+
+    serde::forward_to_deserialize_any! {
+        bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string
+        bytes byte_buf unit unit_struct newtype_struct seq tuple
+        tuple_struct map struct identifier ignored_any
+    }
+}
+
+impl<'de> de::IntoDeserializer<'de, de::value::Error> for Value {
+    type Deserializer = Value;
+
+    fn into_deserializer(self) -> Value {
+        self
+    }
+}
+
+#[cfg(test)]
+mod deserializer_tests {
+    use super::*;
+
+    #[derive(Debug, PartialEq, serde::Deserialize)]
+    #[serde(tag = "type", rename_all = "snake_case")]
+    enum Toy {
+        Ping,
+        Move { speed: u8, at: Option<u16> },
+    }
+
+    #[test]
+    fn a_value_feeds_derived_impls() {
+        let line: Value = serde_json::from_str(r#"{"at":null,"type":"move","speed":7}"#).unwrap();
+        assert_eq!(Toy::deserialize(line), Ok(Toy::Move { speed: 7, at: None }));
+        let line: Value = serde_json::from_str(r#"{"type":"ping"}"#).unwrap();
+        assert_eq!(Toy::deserialize(line), Ok(Toy::Ping));
+    }
+}
