@@ -243,12 +243,13 @@ impl FromStr for Layouts {
         if text == "none" {
             return Ok(Layouts::NONE);
         }
-        text.split(',').try_fold(Layouts::NONE, |set, name| match name {
-            "auto" => Ok(Layouts(set.0 | Layouts::DOCUMENTED.0)),
-            name => Layout::from_name(name)
-                .map(|layout| set.with(layout))
-                .ok_or(UnknownName::new("layout", EXPECTED)),
-        })
+        text.split(',')
+            .try_fold(Layouts::NONE, |set, name| match name {
+                "auto" => Ok(Layouts(set.0 | Layouts::DOCUMENTED.0)),
+                name => Layout::from_name(name)
+                    .map(|layout| set.with(layout))
+                    .ok_or(UnknownName::new("layout", EXPECTED)),
+            })
     }
 }
 

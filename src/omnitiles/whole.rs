@@ -30,4 +30,3 @@ pub(super) fn start_and_id(frame: &[u8]) -> Result<u8, Error> {
         [found, ..] => Err(Error::BadStart { found }),
     }
 }
-

@@ -26,7 +26,7 @@ use core::sync::atomic::{AtomicU16, AtomicU32, AtomicU8, Ordering::Relaxed};
 
 use cortex_m_rt::entry;
 use robowire::io::embedded_io::{PacketReader, PacketWriter};
-use robowire::omnitiles::{units, Command, Decoder, Framing, Layout, Packet, Telemetry};
+use robowire::omnitiles::{device_decoder, units, Command, Layout, Telemetry};
 
 // The tile's state, shared with interrupt handlers that are not shown (the
 // PWM timer reads the duties and targets, the ADC's DMA interrupt writes the
@@ -53,15 +53,13 @@ static UART_ERRORS: AtomicU32 = AtomicU32::new(0);
 fn main() -> ! {
     let (uart_rx, uart_tx) = Usart::usart2().split();
     let mut rx_buf = [0u8; 16];
-    let mut rx = PacketReader::new(uart_rx, Decoder::new(Framing::commands()), &mut rx_buf[..]);
+    let mut rx = PacketReader::new(uart_rx, device_decoder(), &mut rx_buf[..]);
     let mut tx = PacketWriter::<_, { Telemetry::MAX_LEN }>::new(uart_tx);
 
     loop {
         match rx.read_message() {
             Ok(Some(frame)) => {
-                if let Packet::Command(command) = frame.message {
-                    obey(command);
-                }
+                obey(frame.message);
                 // Answer every command with the current state. A write can
                 // only fail on a UART error: nothing to do but go on.
                 let _ = tx.send(&telemetry());
