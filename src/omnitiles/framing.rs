@@ -4,6 +4,7 @@
 
 use core::marker::PhantomData;
 
+use crate::encode::Encode;
 pub use crate::side::{Both, Device, Host};
 use crate::stream::{self, Check};
 
@@ -27,8 +28,9 @@ pub trait Side:
     sealed::Sealed + Copy + Eq + core::hash::Hash + core::fmt::Debug + Default + 'static
 {
     /// The message a decoder of this side yields: [`Telemetry`],
-    /// [`Command`] or [`Message`].
-    type Message: Copy + core::fmt::Debug + PartialEq;
+    /// [`Command`] or [`Message`]. Each encodes, and converts into a
+    /// [`Message`].
+    type Message: Copy + core::fmt::Debug + PartialEq + Encode + Into<Message>;
     /// Whether commands are accepted.
     const COMMANDS: bool;
     /// The telemetry layouts of [`Framing::new`]: the documented four, or
