@@ -842,3 +842,256 @@ fn short_frame_followed_by_garbage_is_unconfirmed() {
         )]
     );
 }
+
+// --- the 0.2 vocabulary ---------------------------------------------------
+
+#[test]
+fn messages_display_as_one_line_of_json_words() {
+    let lines = [
+        (Command::Ping, "ping"),
+        (
+            Command::Extend {
+                motor: M1,
+                speed: 200,
+            },
+            "m1_extend speed=200",
+        ),
+        (
+            Command::Retract {
+                motor: M2,
+                speed: 7,
+            },
+            "m2_retract speed=7",
+        ),
+        (Command::Brake { motor: M2 }, "m2_brake"),
+        (
+            Command::SetPosition {
+                motor: M1,
+                position: 128,
+            },
+            "m1_set_position position=128",
+        ),
+        (
+            Command::BaseVelocity {
+                vx: 10,
+                vy: -5,
+                omega: 20,
+            },
+            "base_velocity vx=10 vy=-5 omega=20",
+        ),
+        (Command::BaseBrake, "base_brake"),
+    ];
+    for (command, line) in lines {
+        assert_eq!(command.to_string(), line);
+        assert_eq!(Message::Command(command).to_string(), line);
+        assert_eq!(command.name(), line.split(' ').next().unwrap());
+    }
+    let t15 = Telemetry::try_from(&hex(T15)[..]).unwrap();
+    assert_eq!(
+        t15.to_string(),
+        "telemetry layout=uwb15 m1_pos=2000 m2_pos=1000 uwb=[1500,2500,null,3000]"
+    );
+    let t53 = Telemetry::try_from(&hex(T53)[..]).unwrap();
+    assert_eq!(
+        Message::Telemetry(t53).to_string(),
+        "telemetry layout=ble53 m1_pos=2000 m2_pos=1000 uwb=[1500,2500,3500,4500] tof=321 \
+         imu={ax=0.1,ay=0.2,az=9.8,gx=0.01,gy=-0.02,gz=0.03} m1_adcs=[2001,2002,2003,2004] \
+         m2_adcs=[1001,1002]"
+    );
+}
+
+#[test]
+fn names_parse_and_display_back() {
+    use robowire::omnitiles::UnknownName;
+    for layout in Layout::ALL {
+        assert_eq!(layout.to_string().parse(), Ok(layout));
+    }
+    for motor in Motor::ALL {
+        assert_eq!(motor.to_string().parse(), Ok(motor));
+    }
+    // Every set of layouts displays as text that parses back to it.
+    for bits in 0..32u8 {
+        let set: Layouts = Layout::ALL
+            .into_iter()
+            .enumerate()
+            .filter(|(i, _)| bits >> i & 1 == 1)
+            .map(|(_, l)| l)
+            .collect();
+        let text = set.to_string();
+        assert_eq!(text.parse(), Ok(set), "{text}");
+    }
+    assert_eq!("auto".parse(), Ok(Layouts::DOCUMENTED));
+    assert_eq!(Layouts::DOCUMENTED.to_string(), "auto");
+    assert_eq!(
+        "spi45,auto".parse::<Layouts>().unwrap().to_string(),
+        "auto,spi45"
+    );
+    assert_eq!("none".parse(), Ok(Layouts::NONE));
+    for bad in ["", "ble52", "auto,", "BLE53", " pos7"] {
+        let err: UnknownName = bad.parse::<Layouts>().unwrap_err();
+        assert_eq!(err.what(), "layout", "{bad:?}");
+    }
+    assert_eq!(
+        "m3".parse::<Motor>().unwrap_err().to_string(),
+        "unknown motor (expected m1 or m2)"
+    );
+    assert!("Ble53".parse::<Layout>().is_err());
+}
+
+#[test]
+fn try_from_takes_exactly_one_whole_frame() {
+    for (bytes, command) in command_vectors() {
+        let wire = hex(bytes);
+        assert_eq!(Command::try_from(&wire[..]), Ok(command), "{bytes}");
+        assert_eq!(Message::try_from(&wire[..]), Ok(Message::Command(command)));
+        // Short, long, corrupted, or the other direction's type: an error.
+        let n = wire.len();
+        assert_eq!(
+            Command::try_from(&wire[..n - 1]),
+            Err(Error::Truncated { len: n - 1 })
+        );
+        let mut long = wire.clone();
+        long.push(0);
+        assert_eq!(
+            Command::try_from(&long[..]),
+            Err(Error::BadLength { len: n + 1 })
+        );
+        let mut bad = wire.clone();
+        bad[n - 1] ^= 1;
+        assert!(matches!(
+            Command::try_from(&bad[..]),
+            Err(Error::Checksum { .. })
+        ));
+        assert_eq!(
+            Telemetry::try_from(&wire[..]),
+            Err(Error::UnknownId { id: wire[1] })
+        );
+    }
+    for (bytes, telemetry) in telemetry_vectors() {
+        let wire = hex(bytes);
+        assert_eq!(Telemetry::try_from(&wire[..]), Ok(telemetry), "{bytes}");
+        assert_eq!(
+            Message::try_from(&wire[..]),
+            Ok(Message::Telemetry(telemetry))
+        );
+        assert_eq!(
+            Command::try_from(&wire[..]),
+            Err(Error::UnknownId { id: 0x60 })
+        );
+        let n = wire.len();
+        assert_eq!(
+            Telemetry::try_from(&wire[..n - 1]),
+            Err(Error::BadLength { len: n - 1 })
+        );
+    }
+    assert_eq!(Message::try_from(&[][..]), Err(Error::Truncated { len: 0 }));
+    assert_eq!(
+        Message::try_from(&[0xa5][..]),
+        Err(Error::Truncated { len: 1 })
+    );
+    assert_eq!(
+        Message::try_from(&[0x5a, 0x50, 0x50][..]),
+        Err(Error::BadStart { found: 0x5a })
+    );
+    assert_eq!(
+        Message::try_from(&[0xa5, 0x99, 0x99][..]),
+        Err(Error::UnknownId { id: 0x99 })
+    );
+}
+
+#[test]
+fn each_side_yields_its_own_messages() {
+    use robowire::omnitiles::{both_decoder, device_decoder, host_decoder, Both, Device, Host};
+    use robowire::omnitiles::{BothDecoder, DeviceDecoder, HostDecoder};
+    // The constructors are const: a decoder can be a static's initial value.
+    const DEVICE: DeviceDecoder = device_decoder();
+    const HOST: HostDecoder = host_decoder();
+    const BOTH: BothDecoder = both_decoder();
+    let input = mixed_stream();
+    let both = decode(any(), &input);
+
+    let mut host = HOST;
+    let mut telemetry: Vec<Telemetry> = host
+        .feed(&input)
+        .filter_map(|e| e.ok().map(|f| f.message))
+        .collect();
+    telemetry.extend(host.flush().filter_map(|e| e.ok().map(|f| f.message)));
+    let mut device = DEVICE;
+    let mut commands: Vec<Command> = device
+        .feed(&input)
+        .filter_map(|e| e.ok().map(|f| f.message))
+        .collect();
+    commands.extend(device.flush().filter_map(|e| e.ok().map(|f| f.message)));
+    // On a clean mixed stream each side finds exactly its direction's frames.
+    let want_telemetry: Vec<Telemetry> = packets(&both)
+        .into_iter()
+        .filter_map(|m| match m {
+            Message::Telemetry(t) => Some(t),
+            Message::Command(_) => None,
+        })
+        .collect();
+    let want_commands: Vec<Command> = packets(&both)
+        .into_iter()
+        .filter_map(|m| match m {
+            Message::Command(c) => Some(c),
+            Message::Telemetry(_) => None,
+        })
+        .collect();
+    assert!(!want_telemetry.is_empty() && !want_commands.is_empty());
+    assert_eq!(telemetry, want_telemetry);
+    assert_eq!(commands, want_commands);
+    // Each rejects the other direction's id.
+    let mut device = DEVICE;
+    let rejected = device.feed(&hex(T7)).next().unwrap().unwrap_err();
+    assert_eq!(rejected.error, Error::UnknownId { id: 0x60 });
+    let mut host = HOST;
+    let rejected = host.feed(&hex("a5 50 50")).next().unwrap().unwrap_err();
+    assert_eq!(rejected.error, Error::UnknownId { id: 0x50 });
+    // The defaults.
+    assert_eq!(BOTH.framing().layouts(), Layouts::DOCUMENTED);
+    assert_eq!(HOST.framing().layouts(), Layouts::DOCUMENTED);
+    assert_eq!(DEVICE.framing().layouts(), Layouts::NONE);
+    assert_eq!(Framing::<Both>::default(), Framing::new());
+    assert!(Framing::<Device>::new().accepts_commands());
+    assert!(!Framing::<Host>::new().accepts_commands());
+    assert!(Framing::<Device>::new().accepts_id(0x50));
+    assert!(!Framing::<Device>::new().accepts_id(0x60));
+}
+
+/// The 0.1 names still compile (deprecated) and mean what they meant.
+#[test]
+#[allow(deprecated)]
+fn old_names_still_work() {
+    use robowire::omnitiles::{Decoder, Packet, BUFFER_LEN};
+    assert_eq!(BUFFER_LEN, 128);
+    // The 0.1 commands-only framing: both directions, no layout.
+    let mut decoder: Decoder = Decoder::new(Framing::commands());
+    let events: Vec<_> = decoder.feed(&hex("a5 50 50")).collect();
+    assert_eq!(
+        events[0].as_ref().unwrap().message,
+        Packet::Command(Command::Ping)
+    );
+    assert_eq!(decoder.feed(&hex(T7)).count(), 1, "telemetry is rejected");
+    assert_eq!(decoder.stats().rejected, 1);
+    let mut decoder = Decoder::new(Framing::ANY);
+    let events: Vec<_> = decoder.feed(&hex(T53)).collect();
+    assert!(matches!(
+        events[0].as_ref().unwrap().message,
+        Packet::Telemetry(_)
+    ));
+    let host = Framing::telemetry(Layouts::only(Layout::Pos7));
+    assert_eq!(host.layouts(), Layouts::only(Layout::Pos7));
+    assert_eq!(Framing::any(Layouts::ALL).layouts(), Layouts::ALL);
+    assert_eq!(
+        Command::from_parts(0x30, &[200]),
+        Some(Command::Extend {
+            motor: M1,
+            speed: 200
+        })
+    );
+    assert_eq!(
+        Telemetry::from_frame(&hex(T7)),
+        Telemetry::try_from(&hex(T7)[..]).ok()
+    );
+    assert_eq!(Telemetry::from_frame(&hex("a5 50 50")), None);
+}

@@ -295,15 +295,19 @@ impl Framing<Host> {
     }
 }
 
-impl Framing<Device> {
-    /// Accept commands only: a tile's view of the link (`--from host`).
-    #[deprecated(since = "0.2.0", note = "use `Framing::<Device>::new()`")]
-    pub const fn commands() -> Self {
-        Framing::new()
-    }
-}
-
 impl Framing<Both> {
+    /// Accept commands only: a tile's view of the link (`--from host`). As in
+    /// 0.1 this is a framing of both directions with no telemetry layout, so
+    /// its decoder yields [`Message`]s; [`Framing<Device>`] decodes the same
+    /// frames as [`Command`]s, without the telemetry code.
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `Framing::<Device>::new()` (a `DeviceDecoder`, which yields `Command`s)"
+    )]
+    pub const fn commands() -> Self {
+        Framing::new().with_layouts(Layouts::NONE)
+    }
+
     /// Accept commands and telemetry in the four documented layouts.
     #[deprecated(since = "0.2.0", note = "use `Framing::<Both>::new()`")]
     pub const ANY: Framing<Both> = Framing::new();

@@ -78,6 +78,11 @@ where
     F::Owned: Into<Message>,
 {
     let event: OwnedEvent<F> = owned_event::<F>(event);
+    widen_owned(event)
+}
+
+/// An owned event with its message as a [`Message`].
+fn widen_owned<M: Into<Message>>(event: Result<OwnedFrame<M>, Rejected<Error>>) -> Ev {
     event.map(|f| OwnedFrame {
         offset: f.offset,
         len: f.len,
@@ -117,21 +122,13 @@ impl AnyDecoder {
 
     /// Every event `input` completes.
     pub fn feed(&mut self, input: &[u8]) -> std::vec::IntoIter<Ev> {
-        let events: Vec<Ev> = each!(self, d => d.feed(input).map(|e| e.map(|f| OwnedFrame {
-            offset: f.offset,
-            len: f.len,
-            message: f.message.into(),
-        })).collect());
+        let events: Vec<Ev> = each!(self, d => d.feed(input).map(widen_owned).collect());
         events.into_iter()
     }
 
     /// Every event at the end of the input.
     pub fn flush(&mut self) -> std::vec::IntoIter<Ev> {
-        let events: Vec<Ev> = each!(self, d => d.flush().map(|e| e.map(|f| OwnedFrame {
-            offset: f.offset,
-            len: f.len,
-            message: f.message.into(),
-        })).collect());
+        let events: Vec<Ev> = each!(self, d => d.flush().map(widen_owned).collect());
         events.into_iter()
     }
 
