@@ -52,6 +52,23 @@ trait MissingField: serde::de::Error {
 
 impl<E: serde::de::Error> MissingField for E {}
 
+/// Read what is left of an event once the stream's members are taken: the
+/// whole object (a message or an internally tagged error), or, for a value
+/// that serialized as a single value, the member `fallback` alone.
+fn read_rest<T: DeserializeOwned>(
+    members: alloc::collections::BTreeMap<alloc::string::String, Value>,
+    fallback: &str,
+) -> Result<T, serde::de::value::Error> {
+    let single = match (members.len(), members.get(fallback)) {
+        (1, Some(value)) => Some(value.clone()),
+        _ => None,
+    };
+    T::deserialize(Value::Map(members)).or_else(|as_object| match single {
+        Some(value) => T::deserialize(value).map_err(|_| as_object),
+        None => Err(as_object),
+    })
+}
+
 /// Reads what [`Serialize`] writes: `offset`, `len`, and the message's own
 /// members (the message reads the rest of the object).
 impl<'de, M: DeserializeOwned> Deserialize<'de> for OwnedFrame<M> {
@@ -62,19 +79,7 @@ impl<'de, M: DeserializeOwned> Deserialize<'de> for OwnedFrame<M> {
         let offset = take_u64(&mut members, "offset")?;
         let len = take_u64(&mut members, "len")?;
         let len = usize::try_from(len).map_err(D::Error::custom)?;
-        // A message that serialized as a single value is the `message` member.
-        let single = match (members.len(), members.get("message")) {
-            (1, Some(value)) => Some(value.clone()),
-            _ => None,
-        };
-        let message = match M::deserialize(Value::Map(members)) {
-            Ok(message) => Ok(message),
-            Err(as_map) => match single {
-                Some(value) => M::deserialize(value).map_err(|_| as_map),
-                None => Err(as_map),
-            },
-        }
-        .map_err(D::Error::custom)?;
+        let message = read_rest(members, "message").map_err(D::Error::custom)?;
         Ok(OwnedFrame {
             offset,
             len,
@@ -90,20 +95,7 @@ impl<'de, E: DeserializeOwned> Deserialize<'de> for Rejected<E> {
             return Err(D::Error::custom("expected a rejection (an object)"));
         };
         let offset = take_u64(&mut members, "offset")?;
-        // An internally tagged error reads the whole object; an error that
-        // serialized as a single value is the `error` member alone.
-        let single = match (members.len(), members.get("error")) {
-            (1, Some(value)) => Some(value.clone()),
-            _ => None,
-        };
-        let error = match E::deserialize(Value::Map(members)) {
-            Ok(error) => Ok(error),
-            Err(tagged) => match single {
-                Some(value) => E::deserialize(value).map_err(|_| tagged),
-                None => Err(tagged),
-            },
-        }
-        .map_err(D::Error::custom)?;
+        let error = read_rest(members, "error").map_err(D::Error::custom)?;
         Ok(Rejected { offset, error })
     }
 }

@@ -76,39 +76,29 @@ impl<M: SerializeMap> SerializeMap for Members<M> {
     }
 }
 
-impl<M: SerializeMap> SerializeStruct for Members<M> {
-    type Ok = M::Ok;
-    type Error = M::Error;
+/// Struct fields and struct-variant fields become map entries alike.
+macro_rules! fields_as_entries {
+    ($($kind:ident),*) => {$(
+        impl<M: SerializeMap> $kind for Members<M> {
+            type Ok = M::Ok;
+            type Error = M::Error;
 
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        key: &'static str,
-        value: &T,
-    ) -> Result<(), M::Error> {
-        self.map.serialize_entry(key, value)
-    }
+            fn serialize_field<T: Serialize + ?Sized>(
+                &mut self,
+                key: &'static str,
+                value: &T,
+            ) -> Result<(), M::Error> {
+                self.map.serialize_entry(key, value)
+            }
 
-    fn end(self) -> Result<M::Ok, M::Error> {
-        self.map.end()
-    }
+            fn end(self) -> Result<M::Ok, M::Error> {
+                self.map.end()
+            }
+        }
+    )*};
 }
 
-impl<M: SerializeMap> SerializeStructVariant for Members<M> {
-    type Ok = M::Ok;
-    type Error = M::Error;
-
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        key: &'static str,
-        value: &T,
-    ) -> Result<(), M::Error> {
-        self.map.serialize_entry(key, value)
-    }
-
-    fn end(self) -> Result<M::Ok, M::Error> {
-        self.map.end()
-    }
-}
+fields_as_entries!(SerializeStruct, SerializeStructVariant);
 
 fn unsupported<E: ser::Error>(what: &str) -> E {
     E::custom(format_args!(
