@@ -22,7 +22,10 @@ fn markdown_files() -> BTreeMap<PathBuf, String> {
     for entry in fs::read_dir(root().join("docs")).expect("docs/ exists") {
         let path = entry.expect("a directory entry").path();
         if path.extension().is_some_and(|e| e == "md") {
-            let relative = path.strip_prefix(root()).expect("under the root").to_path_buf();
+            let relative = path
+                .strip_prefix(root())
+                .expect("under the root")
+                .to_path_buf();
             files.insert(relative, read(&path));
         }
     }
@@ -40,7 +43,12 @@ fn code_blocks(markdown: &str) -> Vec<Block<'_>> {
     let mut current: Option<Block<'_>> = None;
     for line in markdown.lines() {
         match (&mut current, line.strip_prefix("```")) {
-            (None, Some(info)) => current = Some(Block { info: info.trim(), lines: Vec::new() }),
+            (None, Some(info)) => {
+                current = Some(Block {
+                    info: info.trim(),
+                    lines: Vec::new(),
+                })
+            }
             (Some(_), Some(_)) => blocks.extend(current.take()),
             (Some(block), None) => block.lines.push(line),
             (None, None) => {}
@@ -76,7 +84,9 @@ fn anchors(markdown: &str) -> Vec<String> {
     let mut seen: BTreeMap<String, usize> = BTreeMap::new();
     let mut out = Vec::new();
     for line in prose(markdown).lines() {
-        let Some(title) = line.strip_prefix('#') else { continue };
+        let Some(title) = line.strip_prefix('#') else {
+            continue;
+        };
         let title = title.trim_start_matches('#').trim();
         let slug: String = title
             .to_lowercase()
@@ -85,7 +95,11 @@ fn anchors(markdown: &str) -> Vec<String> {
             .map(|c| if c == ' ' { '-' } else { c })
             .collect();
         let n = seen.entry(slug.clone()).or_insert(0);
-        out.push(if *n == 0 { slug.clone() } else { format!("{slug}-{n}") });
+        out.push(if *n == 0 {
+            slug.clone()
+        } else {
+            format!("{slug}-{n}")
+        });
         *n += 1;
     }
     out
@@ -110,12 +124,28 @@ fn links(markdown: &str) -> Vec<String> {
 fn the_readme_is_a_front_page() {
     let readme = read(&root().join("README.md"));
     let lines = readme.lines().count();
-    assert!(lines <= 250, "README.md has {lines} lines; the details belong in docs/");
-    for section in ["cargo add robowire", "## OmniTiles", "## Pixy2", "## Telemetrix4RpiPico"] {
+    assert!(
+        lines <= 250,
+        "README.md has {lines} lines; the details belong in docs/"
+    );
+    for section in [
+        "cargo add robowire",
+        "## OmniTiles",
+        "## Pixy2",
+        "## Telemetrix4RpiPico",
+    ] {
         assert!(readme.contains(section), "README.md lacks {section:?}");
     }
-    for guide in ["docs/cli.md", "docs/embedded.md", "docs/performance.md", "docs/robustness.md"] {
-        assert!(readme.contains(&format!("]({guide})")), "README.md does not link {guide}");
+    for guide in [
+        "docs/cli.md",
+        "docs/embedded.md",
+        "docs/performance.md",
+        "docs/robustness.md",
+    ] {
+        assert!(
+            readme.contains(&format!("]({guide})")),
+            "README.md does not link {guide}"
+        );
     }
 }
 
@@ -127,7 +157,11 @@ fn no_code_block_hides_lines() {
                 let trimmed = line.trim_start();
                 // `#[attr]` and `#![attr]` are Rust; `# x` and a lone `#` are hidden lines.
                 let hidden = trimmed == "#" || trimmed.starts_with("# ");
-                assert!(!hidden, "{}: a hidden doctest line: {line:?}", path.display());
+                assert!(
+                    !hidden,
+                    "{}: a hidden doctest line: {line:?}",
+                    path.display()
+                );
             }
         }
     }
@@ -146,9 +180,17 @@ fn every_relative_link_and_anchor_resolves() {
                 Some((file, anchor)) => (file, Some(anchor)),
                 None => (link.as_str(), None),
             };
-            let target = if file.is_empty() { path.clone() } else { dir.join(file) };
+            let target = if file.is_empty() {
+                path.clone()
+            } else {
+                dir.join(file)
+            };
             let on_disk = root().join(&target);
-            assert!(on_disk.exists(), "{}: the link {link:?} leads nowhere", path.display());
+            assert!(
+                on_disk.exists(),
+                "{}: the link {link:?} leads nowhere",
+                path.display()
+            );
             if let Some(anchor) = anchor {
                 let target_text = read(&on_disk);
                 assert!(
@@ -171,7 +213,11 @@ fn every_page_with_rust_examples_is_a_doctest() {
             .any(|b| is_rust(b.info) && !b.info.contains("ignore"));
         if compiled {
             let include = format!("#[doc = include_str!(\"../{}\")]", path.display());
-            assert!(lib.contains(&include), "src/lib.rs does not compile {}", path.display());
+            assert!(
+                lib.contains(&include),
+                "src/lib.rs does not compile {}",
+                path.display()
+            );
         }
     }
 }
@@ -196,19 +242,32 @@ fn the_feature_tables_list_every_feature() {
     let lib = read(&root().join("src/lib.rs"));
     for name in names {
         let row = format!("| `{name}` |");
-        assert!(readme.contains(&row), "README.md's feature table lacks `{name}`");
-        assert!(lib.contains(&format!("//! {row}")), "the crate docs' feature table lacks `{name}`");
+        assert!(
+            readme.contains(&row),
+            "README.md's feature table lacks `{name}`"
+        );
+        assert!(
+            lib.contains(&format!("//! {row}")),
+            "the crate docs' feature table lacks `{name}`"
+        );
     }
 }
 
 #[test]
 fn the_embedded_guide_shows_the_firmware_example() {
     let guide = read(&root().join("docs/embedded.md"));
-    let (_, after) = guide.split_once("<!-- firmware -->").expect("the firmware marker");
+    let (_, after) = guide
+        .split_once("<!-- firmware -->")
+        .expect("the firmware marker");
     let block = &code_blocks(after)[0];
     let firmware = read(&root().join("examples/firmware/src/main.rs"));
     let mut rest = firmware.lines().map(str::trim);
-    for line in block.lines.iter().map(|l| l.trim()).filter(|l| !l.is_empty()) {
+    for line in block
+        .lines
+        .iter()
+        .map(|l| l.trim())
+        .filter(|l| !l.is_empty())
+    {
         assert!(
             rest.any(|f| f == line),
             "docs/embedded.md shows a line that examples/firmware/src/main.rs does not have \
