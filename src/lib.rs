@@ -110,6 +110,8 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+#[cfg(feature = "serde")]
+extern crate alloc;
 #[cfg(feature = "tokio-util-07")]
 extern crate std;
 
