@@ -9,9 +9,11 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use robowire::omnitiles::{
-    Command, Decoder, Framing, Imu, Layout, Layouts, Motor, Telemetry, NO_READING,
+    Both, Command, Device, Framing, Host, Imu, Layout, Layouts, Motor, Side, Telemetry,
+    BOTH_BUFFER, NO_READING,
 };
 use robowire::Encode;
+use robowire::StreamDecoder;
 
 const MIB: usize = 1 << 20;
 
@@ -154,8 +156,8 @@ fn noisy() -> (Vec<u8>, usize) {
 }
 
 /// Decode `input` fed in `chunk`-byte pieces; count the frames.
-fn decode(framing: Framing, input: &[u8], chunk: usize) -> usize {
-    let mut decoder = Decoder::new(framing);
+fn decode<S: Side>(framing: Framing<S>, input: &[u8], chunk: usize) -> usize {
+    let mut decoder = StreamDecoder::<_, BOTH_BUFFER>::new(framing);
     let mut frames = 0;
     for mut piece in input.chunks(chunk) {
         while let Some(event) = decoder.decode(&mut piece) {
@@ -175,8 +177,8 @@ fn decode(framing: Framing, input: &[u8], chunk: usize) -> usize {
 }
 
 /// The same through the single-byte entry point.
-fn push(framing: Framing, input: &[u8]) -> usize {
-    let mut decoder = Decoder::new(framing);
+fn push<S: Side>(framing: Framing<S>, input: &[u8]) -> usize {
+    let mut decoder = StreamDecoder::<_, BOTH_BUFFER>::new(framing);
     let mut frames = 0;
     for &byte in input {
         if let Some(Ok(frame)) = decoder.push(byte) {
@@ -216,18 +218,24 @@ fn omnitiles(c: &mut Criterion) {
     let (mixed_messages, mixed) = mixed();
     let (command_messages, commands) = commands();
     let (noisy, noisy_intact) = noisy();
-    let ble53_only = Framing::telemetry(Layouts::only(Layout::Ble53));
+    let ble53_only = Framing::<Host>::new().with_layouts(Layouts::only(Layout::Ble53));
 
     // Each benchmark finds exactly what was generated (checked once).
     let whole = usize::MAX;
     assert_eq!(decode(ble53_only, &ble, whole), ble_messages.len());
     assert_eq!(decode(ble53_only, &ble, 244), ble_messages.len());
-    assert_eq!(decode(Framing::ANY, &mixed, whole), mixed_messages.len());
     assert_eq!(
-        decode(Framing::commands(), &commands, whole),
+        decode(Framing::<Both>::new(), &mixed, whole),
+        mixed_messages.len()
+    );
+    assert_eq!(
+        decode(Framing::<Device>::new(), &commands, whole),
         command_messages.len()
     );
-    assert_eq!(push(Framing::commands(), &commands), command_messages.len());
+    assert_eq!(
+        push(Framing::<Device>::new(), &commands),
+        command_messages.len()
+    );
     assert_eq!(decode(ble53_only, &noisy, whole), noisy_intact);
     let mut out = vec![0u8; MIB];
     assert_eq!(encode_all(&ble_messages, &mut out), ble.len());
@@ -235,7 +243,7 @@ fn omnitiles(c: &mut Criterion) {
     assert_eq!(encode_all(&command_messages, &mut out), commands.len());
     assert_eq!(&out[..commands.len()], &commands[..]);
     assert_eq!(
-        decode(Framing::ANY, &mixed, 244),
+        decode(Framing::<Both>::new(), &mixed, 244),
         mixed_messages.len(),
         "mixed layouts at BLE chunking"
     );
@@ -256,12 +264,12 @@ fn omnitiles(c: &mut Criterion) {
 
     group.throughput(bytes(mixed.len()));
     group.bench_function("decode/auto_mixed", |b| {
-        b.iter(|| decode(Framing::ANY, black_box(&mixed), whole))
+        b.iter(|| decode(Framing::<Both>::new(), black_box(&mixed), whole))
     });
 
     group.throughput(bytes(commands.len()));
     group.bench_function("decode/commands", |b| {
-        b.iter(|| decode(Framing::commands(), black_box(&commands), whole))
+        b.iter(|| decode(Framing::<Device>::new(), black_box(&commands), whole))
     });
 
     group.throughput(bytes(noisy.len()));
@@ -271,7 +279,7 @@ fn omnitiles(c: &mut Criterion) {
 
     group.throughput(bytes(commands.len()));
     group.bench_function("push/commands", |b| {
-        b.iter(|| push(Framing::commands(), black_box(&commands)))
+        b.iter(|| push(Framing::<Device>::new(), black_box(&commands)))
     });
 
     group.throughput(bytes(ble.len()));

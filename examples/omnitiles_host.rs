@@ -21,10 +21,8 @@ use std::error::Error;
 use std::time::Duration;
 
 use futures_util::{SinkExt, StreamExt};
-use robowire::io::tokio::OmniTilesCodec;
-use robowire::omnitiles::{
-    units, Command, Framing, Imu, Layout, Layouts, Motor, Packet, Telemetry,
-};
+use robowire::io::tokio::{OmniTilesDeviceCodec, OmniTilesHostCodec};
+use robowire::omnitiles::{units, Command, Framing, Imu, Layout, Layouts, Motor, Telemetry};
 use robowire::FrameBuf;
 use tokio::io::{AsyncWriteExt, ReadHalf, WriteHalf};
 use tokio_serial::{SerialPortBuilderExt, SerialStream};
@@ -54,8 +52,8 @@ async fn main() -> Result<()> {
 
 /// The host's view of the link: telemetry in, commands out.
 struct Link {
-    telemetry: FramedRead<ReadHalf<SerialStream>, OmniTilesCodec>,
-    commands: FramedWrite<WriteHalf<SerialStream>, OmniTilesCodec>,
+    telemetry: FramedRead<ReadHalf<SerialStream>, OmniTilesHostCodec>,
+    commands: FramedWrite<WriteHalf<SerialStream>, OmniTilesHostCodec>,
 }
 
 impl Link {
@@ -69,10 +67,9 @@ impl Link {
     async fn until(&mut self, what: &str, done: impl Fn(&Telemetry) -> bool) -> Result<Telemetry> {
         let wait = async {
             while let Some(frame) = self.telemetry.next().await {
-                if let Packet::Telemetry(t) = frame?.message {
-                    if done(&t) {
-                        return Ok(t);
-                    }
+                let t = frame?.message;
+                if done(&t) {
+                    return Ok(t);
                 }
             }
             Err("the tile closed the link".into())
@@ -92,10 +89,10 @@ async fn host(port: SerialStream) -> Result<()> {
     let (rx, tx) = tokio::io::split(port);
     // A host accepts telemetry only; naming the one layout the tile sends
     // means every frame is emitted as soon as it is complete.
-    let framing = Framing::telemetry(Layouts::only(Layout::Ble53));
+    let framing = Framing::new().with_layouts(Layouts::only(Layout::Ble53));
     let mut link = Link {
-        telemetry: FramedRead::new(rx, OmniTilesCodec::new(framing)),
-        commands: FramedWrite::new(tx, OmniTilesCodec::default()),
+        telemetry: FramedRead::new(rx, OmniTilesHostCodec::new(framing)),
+        commands: FramedWrite::new(tx, OmniTilesHostCodec::default()),
     };
 
     link.send(Command::Ping).await?;
@@ -159,8 +156,8 @@ async fn simulated_tile(port: SerialStream) -> Result<()> {
     const FULL_SPEED: f32 = 55.0;
 
     let (rx, tx) = tokio::io::split(port);
-    let mut commands = FramedRead::new(rx, OmniTilesCodec::new(Framing::commands()));
-    let mut telemetry = FramedWrite::new(tx, OmniTilesCodec::default());
+    let mut commands = FramedRead::new(rx, OmniTilesDeviceCodec::default());
+    let mut telemetry = FramedWrite::new(tx, OmniTilesDeviceCodec::default());
     // Raw positions (0..=4095) and what each actuator is doing: a signed duty
     // fraction or a target position.
     let mut pos = [200.0f32, 300.0];
@@ -172,7 +169,7 @@ async fn simulated_tile(port: SerialStream) -> Result<()> {
         tokio::select! {
             command = commands.next() => {
                 let Some(command) = command else { return Ok(()) };
-                let Packet::Command(command) = command?.message else { continue };
+                let command = command?.message;
                 let (i, motor) = match command {
                     Command::Extend { motor, .. }
                     | Command::Retract { motor, .. }

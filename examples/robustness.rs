@@ -15,7 +15,7 @@
 mod corruption;
 
 use corruption::{command_stream, decode, score, telemetry_stream, Corruption, Score, Stream};
-use robowire::omnitiles::{Framing, Layout, Layouts};
+use robowire::omnitiles::{Both, Device, Framing, Host, Layout, Layouts, Message, Side};
 
 const CHUNKS: [(usize, &str); 4] = [(1, "1"), (7, "7"), (244, "244"), (0, "whole")];
 
@@ -41,20 +41,20 @@ fn main() {
         let stream = telemetry_stream(0xB1E0 + i as u64, frames, &[Layout::Ble53], kind);
         report(
             "telemetry ble53",
-            "`telemetry(only(Ble53))`",
+            "`Framing<Host>` with `only(Ble53)`",
             kind,
             &stream,
-            Framing::telemetry(Layouts::only(Layout::Ble53)),
+            Framing::<Host>::new().with_layouts(Layouts::only(Layout::Ble53)),
         );
     }
     for (i, kind) in telemetry_kinds.into_iter().enumerate() {
         let stream = telemetry_stream(0xD0C0 + i as u64, frames, &documented, kind);
         report(
             "telemetry 7/15/17/53 mixed",
-            "`Framing::ANY` (default)",
+            "`Framing<Both>` (default)",
             kind,
             &stream,
-            Framing::ANY,
+            Framing::<Both>::new(),
         );
     }
     for (i, kind) in [
@@ -70,15 +70,21 @@ fn main() {
         let stream = command_stream(0xC0DE + i as u64, frames, kind);
         report(
             "commands",
-            "`commands()`",
+            "`Framing<Device>`",
             kind,
             &stream,
-            Framing::commands(),
+            Framing::<Device>::new(),
         );
     }
 }
 
-fn report(name: &str, decoder: &str, kind: Corruption, stream: &Stream, framing: Framing) {
+fn report<S: Side<Message: Into<Message>>>(
+    name: &str,
+    decoder: &str,
+    kind: Corruption,
+    stream: &Stream,
+    framing: Framing<S>,
+) {
     let scores: Vec<(&str, Score)> = CHUNKS
         .iter()
         .map(|&(chunk, label)| (label, score(stream, &decode(framing, &stream.bytes, chunk))))

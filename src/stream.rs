@@ -5,9 +5,10 @@
 //! frame of length `n`, not a frame, or not enough to tell yet. [`StreamDecoder`]
 //! does everything else, once, for all protocols:
 //!
-//! * **resync by one**: a failed candidate costs only its first byte; every byte
-//!   after it (including bytes that were buffered as its payload) is scanned
-//!   again, so a frame that began inside a failed candidate is never lost;
+//! * **resync by one**: a failed candidate (bad checksum, unknown id, impossible
+//!   length) costs only its first byte; every byte after it (including bytes
+//!   that were buffered as its payload) is scanned again, so a frame that began
+//!   inside a failed candidate is never lost;
 //! * **zero-copy fast path**: a frame that lies wholly inside the caller's chunk is
 //!   parsed in place; only a frame that straddles two chunks is copied into the
 //!   fixed internal buffer of `N` bytes;
@@ -16,10 +17,108 @@
 //! * **chunking invariance**: the same input gives the same frames and the same
 //!   rejections however it is split, once [`StreamDecoder::finish`] has been called
 //!   at the end of the input;
-//! * **statistics** for watching link quality ([`Stats`]).
+//! * **resync verification**: a candidate found after garbage is accepted only
+//!   when no valid frame starts inside it, or when what follows confirms it (a
+//!   plausible header or the end of input); otherwise it is set aside
+//!   (superseded), so garbage that happens to sum right does not swallow the real
+//!   frame after it. Candidates directly after a frame are trusted, so a clean
+//!   stream is never delayed (details on [`StreamDecoder`]);
+//! * **errors are events**: a bad candidate is reported as a [`Rejected`] event
+//!   and decoding goes on; [`Stats`] counts frames, skipped bytes, checksum
+//!   failures and other rejections, for watching link quality.
 //!
 //! The engine never allocates and every constructor is `const`, so a decoder can
 //! live in a `static`.
+//!
+//! # Feeding a decoder
+//!
+//! * [`StreamDecoder::decode`] takes a chunk (`&mut &[u8]`) and returns the next
+//!   event, borrowing the frame in place when it can; call it until it returns
+//!   `None`.
+//! * [`StreamDecoder::push`] takes one byte (for interrupt handlers); then call
+//!   [`StreamDecoder::poll`] until it returns `None`, because a rejection can
+//!   reveal frames among the bytes already buffered.
+//! * [`StreamDecoder::feed`] and [`StreamDecoder::flush`] are iterators of owned
+//!   events ([`OwnedFrame`] or [`Rejected`]), for code that collects or sends
+//!   messages on.
+//! * [`StreamDecoder::finish`] (or `flush`) at the end of the input resolves the
+//!   buffered candidate: a frame that only the end could confirm comes out, a cut
+//!   frame is reported as truncated.
+//!
+//! # Writing the frame rules of a new protocol
+//!
+//! A protocol module provides a framing value that implements [`FrameRules`],
+//! usually `Framing<S>` with a side marker `S` from [`crate::side`] (`Host`
+//! decodes what the device sends, `Device` what the host sends, `Both` either),
+//! and type aliases of [`StreamDecoder`] for each side with a buffer constant.
+//! The engine then gives it every decoder, the `io` adapters and the fuzzing
+//! oracles (`fuzz/src/lib.rs`: `check_stream` works for any framing).
+//!
+//! * [`find_start`](FrameRules::find_start) returns the first index where a frame
+//!   could start (a start byte or sync word, or any byte for a protocol without
+//!   one). A sync word cut by the end of the input must still be returned.
+//! * [`check`](FrameRules::check) looks at the bytes from a candidate start and
+//!   answers [`Check::Need`] (with the least total it needs before the answer
+//!   can change), [`Check::Frame`] (a valid frame of this length) or
+//!   [`Check::Reject`]. Reject as early as the bytes allow: an impossible id or
+//!   length from the header, so garbage is not held for a whole frame's length.
+//!   Answers must be *consistent*: once `check` has said `Frame` or `Reject` for
+//!   some bytes, it says the same for any longer input that starts with them.
+//!   Chunking invariance rests on this, and the fuzz oracles test it.
+//! * [`HEADER_LEN`](FrameRules::HEADER_LEN) is how many bytes `check` needs to
+//!   reject an impossible header; the resync verification reads that many bytes
+//!   after a candidate to decide whether a plausible frame follows it.
+//! * [`VERIFY_AFTER_RESYNC`](FrameRules::VERIFY_AFTER_RESYNC): keep it `true`
+//!   with a checksum. Without one (Telemetrix), plausible frames inside frames
+//!   are so common that verifying costs about as many real frames as it saves.
+//! * [`parse`](FrameRules::parse) builds the message from a frame `check`
+//!   accepted. An error here consumes the frame and counts it as malformed: use
+//!   it for contents that are wrong although the integrity check passed. Contents
+//!   that show the candidate cannot be a frame at all (no checksum vouches for
+//!   it) belong in `check`, as a rejection, so its bytes are rescanned.
+//! * [`truncated`](FrameRules::truncated), [`superseded`](FrameRules::superseded)
+//!   and [`is_checksum_error`](FrameRules::is_checksum_error) map the engine's
+//!   own outcomes to the protocol's `Error`.
+//! * Size the decoder's buffer at about twice the longest frame plus
+//!   `HEADER_LEN`, so the resync verification has room for a candidate, a frame
+//!   starting inside it and the header after that.
+//!
+//! # Writing fast frame rules
+//!
+//! What the engine does, and what a framing can do, to keep decoding near memory
+//! speed (the figures are in `docs/performance.md`):
+//!
+//! * **One parse site.** `decode` resolves a candidate to a small step (an
+//!   offset and a slice, in place or in the buffer) and parses it in one place,
+//!   so the message is built once, straight into the returned event. Before, each
+//!   path built its own event and LLVM copied ~100-byte events where the paths
+//!   joined, with narrow stores followed by wide loads (store-forwarding stalls:
+//!   45–70 % of the samples on single `movaps` instructions).
+//! * **Inlined hot path.** `decode`, the in-place step, the fast path of
+//!   candidate resolution and the counted parse are `#[inline(always)]`, so the
+//!   decoder runs inside the caller's loop; the buffered step, the resync
+//!   verification (only after a resync) and dropping consumed bytes stay out of
+//!   line. A protocol's `check`, `parse` and `find_start` should be `#[inline]`
+//!   (they are called across crates) — OmniTiles' `check` is `#[inline(always)]`.
+//! * **Buffer fast paths.** A buffered frame that was all the buffer held empties
+//!   the buffer when it is emitted (no copy, no rescan on the next call).
+//! * **What a framing can do** (as OmniTiles does): answer `find_start` from the
+//!   first byte when it is a start byte before calling `memchr` (the next frame
+//!   usually starts right there); read fixed-size frames through
+//!   `first_chunk::<L>()` so every field read has a constant offset (no bounds
+//!   checks); sum fixed ranges so LLVM unrolls and vectorises; replace an
+//!   unpredictable `match` on a message id by a table built at compile time;
+//!   avoid branching on a length that varies frame to frame (the OmniTiles
+//!   command checksum masks the payload instead).
+//!
+//! OmniTiles specifics: telemetry parsing dispatches per layout to a fixed-size
+//! reader; `check` with a single layout sums a fixed range; the multi-layout
+//! search stays out of line and adds eight bytes at a time; the command payload
+//! length is a 256-entry table built from the command list at compile time.
+//!
+//! What is left: a frame cut by a chunk boundary goes through the buffer, and
+//! reading it right after it was written costs a store-forwarding stall; the
+//! measurements and what was tried are in `docs/performance.md`.
 
 use core::fmt;
 

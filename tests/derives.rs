@@ -3,10 +3,9 @@
 #[cfg(feature = "serde")]
 #[test]
 fn serde_round_trips_reports_and_counters() {
-    use robowire::omnitiles::{Decoder, Framing};
     use robowire::{EncodeError, OwnedFrame, Rejected, Stats};
 
-    let mut decoder = Decoder::new(Framing::commands());
+    let mut decoder = robowire::omnitiles::device_decoder();
     decoder
         .feed(&[0x00, 0xa5, 0x50, 0x51, 0xa5, 0x50, 0x50])
         .for_each(drop);
@@ -71,11 +70,14 @@ fn defmt_formats_reports_and_counters() {
         format::<robowire::omnitiles::Layouts>(),
         format::<robowire::omnitiles::Imu>(),
         format::<robowire::omnitiles::Telemetry>(),
-        format::<robowire::omnitiles::Packet>(),
+        format::<robowire::omnitiles::Message>(),
         format::<robowire::omnitiles::Error>(),
-        format::<robowire::omnitiles::Framing>(),
-        format::<robowire::omnitiles::DatagramDecoder>(),
-        format::<robowire::omnitiles::Datagram<'static, 'static>>(),
+        format::<robowire::omnitiles::UnknownName>(),
+        format::<robowire::omnitiles::Framing<robowire::omnitiles::Host>>(),
+        format::<robowire::omnitiles::Framing<robowire::omnitiles::Device>>(),
+        format::<robowire::omnitiles::Framing<robowire::omnitiles::Both>>(),
+        format::<robowire::omnitiles::DatagramDecoder<robowire::omnitiles::Both>>(),
+        format::<robowire::omnitiles::Datagram<'static, 'static, robowire::omnitiles::Host>>(),
         format::<robowire::pixy2::Block>(),
         format::<robowire::pixy2::BlockIter<'static>>(),
         format::<robowire::pixy2::Blocks<'static>>(),
@@ -223,44 +225,71 @@ fn serde_engine_types() {
 #[cfg(feature = "serde")]
 #[test]
 fn serde_omnitiles_commands_and_config() {
-    use robowire::omnitiles::{Command, Error, Framing, Layout, Layouts, Motor, Packet};
+    use robowire::omnitiles::{
+        Both, Command, Device, Error, Framing, Host, Layout, Layouts, Message, Motor,
+    };
 
+    // Messages and errors are the command-line tool's JSON lines.
     json_round_trip(
-        &Packet::Command(Command::Extend {
+        &Message::Command(Command::Extend {
             motor: Motor::M1,
             speed: 200,
         }),
-        r#"{"Command":{"Extend":{"motor":"M1","speed":200}}}"#,
+        r#"{"type":"m1_extend","speed":200}"#,
     );
-    json_round_trip(&Command::Ping, r#""Ping""#);
+    json_round_trip(&Command::Ping, r#"{"type":"ping"}"#);
     json_round_trip(
         &Command::BaseVelocity {
             vx: -127,
             vy: 0,
             omega: 5,
         },
-        r#"{"BaseVelocity":{"vx":-127,"vy":0,"omega":5}}"#,
+        r#"{"type":"base_velocity","vx":-127,"vy":0,"omega":5}"#,
     );
+    json_round_trip(&Motor::M2, r#""m2""#);
     json_round_trip(&Layout::UwbTof17, r#""uwbtof17""#);
     json_round_trip(&Layouts::DOCUMENTED, "23");
     json_round_trip(&Layouts::NONE, "0");
     json_round_trip(
-        &Framing::telemetry(Layouts::only(Layout::Spi45)),
-        r#"{"commands":false,"layouts":8}"#,
+        &Framing::<Host>::new().with_layouts(Layouts::only(Layout::Spi45)),
+        r#"{"layouts":8}"#,
     );
+    json_round_trip(&Framing::<Device>::new(), r#"{"layouts":0}"#);
+    json_round_trip(&Framing::<Both>::new(), r#"{"layouts":23}"#);
     json_round_trip(
         &Error::Checksum {
             expected: 0xf8,
             found: 0xf7,
         },
-        r#"{"Checksum":{"expected":248,"found":247}}"#,
+        r#"{"error":"checksum","expected":248,"found":247}"#,
+    );
+    json_round_trip(&Error::Unconfirmed, r#"{"error":"unconfirmed"}"#);
+    json_round_trip(
+        &Error::Superseded { len: 7 },
+        r#"{"error":"superseded","len":7}"#,
+    );
+    // A command is no telemetry, and the other way round.
+    let err = serde_json::from_str::<Command>(
+        r#"{"type":"telemetry","layout":"pos7","m1_pos":1,"m2_pos":2}"#,
+    )
+    .unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("type `telemetry` is not a command"),
+        "{err}"
+    );
+    let err =
+        serde_json::from_str::<robowire::omnitiles::Telemetry>(r#"{"type":"ping"}"#).unwrap_err();
+    assert!(
+        err.to_string().starts_with("type `ping` is not telemetry"),
+        "{err}"
     );
 }
 
 #[cfg(feature = "serde")]
 #[test]
 fn serde_omnitiles_refuses_undefined_layout_bits() {
-    use robowire::omnitiles::{Framing, Layouts};
+    use robowire::omnitiles::{Both, Device, Framing, Layouts};
 
     assert_eq!(serde_json::from_str::<Layouts>("31").unwrap(), Layouts::ALL);
     for bits in ["32", "255", "33"] {
@@ -268,16 +297,19 @@ fn serde_omnitiles_refuses_undefined_layout_bits() {
         assert!(err.to_string().contains("telemetry layouts"), "{err}");
     }
     assert!(serde_json::from_str::<Layouts>("256").is_err());
-    assert!(serde_json::from_str::<Framing>(r#"{"commands":true,"layouts":64}"#).is_err());
+    assert!(serde_json::from_str::<Framing<Both>>(r#"{"layouts":64}"#).is_err());
+    // A device framing accepts no telemetry.
+    let err = serde_json::from_str::<Framing<Device>>(r#"{"layouts":1}"#).unwrap_err();
+    assert!(err.to_string().contains("commands only"), "{err}");
 }
 
 #[cfg(feature = "serde")]
 #[test]
 fn serde_omnitiles_telemetry() {
-    use robowire::omnitiles::{Imu, Layout, Packet, Telemetry};
+    use robowire::omnitiles::{Imu, Layout, Message, Telemetry};
     use robowire::FrameBuf;
 
-    // A BLE frame with finite IMU values (JSON has no NaN), decoded from its bytes.
+    // A BLE frame, decoded from its bytes.
     let mut sent = Telemetry::empty(Layout::Ble53);
     sent.m1_pos = Some(2000);
     sent.uwb = Some([Some(1200), None, Some(800), None]);
@@ -285,25 +317,25 @@ fn serde_omnitiles_telemetry() {
     sent.m1_adcs = Some([1, 2, 3, 4]);
     sent.m2_adcs = Some([5, 6]);
     let frame = FrameBuf::<64>::encode(&sent).unwrap();
-    let telemetry = Telemetry::from_frame(&frame).unwrap();
+    let telemetry = Telemetry::try_from(&frame[..]).unwrap();
     assert_eq!(telemetry, sent);
     assert_eq!(telemetry.tof, Some(None));
     json_round_trip(
-        &Packet::Telemetry(telemetry),
+        &Message::Telemetry(telemetry),
         concat!(
-            r#"{"Telemetry":{"layout":"ble53","m1_pos":2000,"m2_pos":null,"#,
+            r#"{"type":"telemetry","layout":"ble53","m1_pos":2000,"m2_pos":null,"#,
             r#""uwb":[1200,null,800,null],"tof":null,"#,
             r#""imu":{"ax":0.5,"ay":-0.25,"az":9.75,"gx":0.0,"gy":0.125,"gz":-1.5},"#,
-            r#""m1_adcs":[1,2,3,4],"m2_adcs":[5,6]}}"#
+            r#""m1_adcs":[1,2,3,4],"m2_adcs":[5,6]}"#
         ),
     );
 
-    // `tof: null` is "not carried" where the layout has no ToF field.
-    let short = Telemetry::from_frame(&[0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x22]).unwrap();
+    // A group the layout does not carry is absent; `null` is no reading.
+    let short = Telemetry::try_from(&[0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x22][..]).unwrap();
     assert_eq!(short.tof, None);
     json_round_trip(
         &short,
-        r#"{"layout":"pos7","m1_pos":2000,"m2_pos":1000,"uwb":null,"tof":null,"imu":null,"m1_adcs":null,"m2_adcs":null}"#,
+        r#"{"type":"telemetry","layout":"pos7","m1_pos":2000,"m2_pos":1000}"#,
     );
     let with_tof = Telemetry {
         tof: Some(Some(310)),
@@ -311,27 +343,50 @@ fn serde_omnitiles_telemetry() {
     };
     json_round_trip(
         &with_tof,
-        r#"{"layout":"uwbtof17","m1_pos":null,"m2_pos":null,"uwb":[null,null,null,null],"tof":310,"imu":null,"m1_adcs":null,"m2_adcs":null}"#,
+        r#"{"type":"telemetry","layout":"uwbtof17","m1_pos":null,"m2_pos":null,"uwb":[null,null,null,null],"tof":310}"#,
     );
 
     // Field groups the layout does not carry (or lacks) are refused.
-    let imu_in_pos7 = r#"{"layout":"pos7","m1_pos":1,"m2_pos":2,"uwb":null,"tof":null,
-        "imu":{"ax":0.0,"ay":0.0,"az":0.0,"gx":0.0,"gy":0.0,"gz":0.0},"m1_adcs":null,"m2_adcs":null}"#;
+    let imu_in_pos7 = r#"{"type":"telemetry","layout":"pos7","m1_pos":1,"m2_pos":2,
+        "imu":{"ax":0.0,"ay":0.0,"az":0.0,"gx":0.0,"gy":0.0,"gz":0.0}}"#;
     let err = serde_json::from_str::<Telemetry>(imu_in_pos7).unwrap_err();
-    assert!(err.to_string().contains("do not match the layout"), "{err}");
-    let ble_without_adcs = r#"{"layout":"ble53","m1_pos":1,"m2_pos":2,"uwb":[1,2,3,4],"tof":5,
-        "imu":{"ax":0.0,"ay":0.0,"az":0.0,"gx":0.0,"gy":0.0,"gz":0.0},"m1_adcs":null,"m2_adcs":null}"#;
+    assert!(
+        err.to_string()
+            .starts_with("layout pos7 does not carry `imu`"),
+        "{err}"
+    );
+    let ble_without_adcs = r#"{"type":"telemetry","layout":"ble53","m1_pos":1,"m2_pos":2,"uwb":[1,2,3,4],"tof":5,
+        "imu":{"ax":0.0,"ay":0.0,"az":0.0,"gx":0.0,"gy":0.0,"gz":0.0}}"#;
     let err = serde_json::from_str::<Telemetry>(ble_without_adcs).unwrap_err();
-    assert!(err.to_string().contains("do not match the layout"), "{err}");
+    assert!(
+        err.to_string()
+            .starts_with("missing field `m1_adcs` (layout ble53 carries it)"),
+        "{err}"
+    );
 
-    // NaN becomes null in JSON and does not come back.
+    // NaN and infinities are strings that read back bit for bit.
     let nan = Telemetry {
-        imu: Some(Imu::from_array([f32::NAN, 0.0, 0.0, 0.0, 0.0, 0.0])),
+        imu: Some(Imu::from_array([
+            f32::NAN,
+            f32::INFINITY,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+        ])),
         ..Telemetry::empty(Layout::Spi45)
     };
     let json = serde_json::to_string(&nan).unwrap();
-    assert!(json.contains(r#""ax":null"#), "{json}");
-    assert!(serde_json::from_str::<Telemetry>(&json).is_err());
+    assert!(
+        json.contains(r#""ax":"nan:0x7fc00000","ay":"inf""#),
+        "{json}"
+    );
+    assert_eq!(serde_json::from_str::<Telemetry>(&json).unwrap(), nan);
+    // An IMU sample alone is the `imu` object.
+    json_round_trip(
+        &Imu::from_array([0.1, 0.0, 9.8, 0.0, -0.0, 1e-3]),
+        r#"{"ax":0.1,"ay":0.0,"az":9.8,"gx":0.0,"gy":-0.0,"gz":0.001}"#,
+    );
 }
 
 #[cfg(feature = "serde")]

@@ -7,7 +7,7 @@ mod io_common;
 use core::fmt;
 
 use io_common::{engine_events, noisy_commands, noisy_telemetry, Ev, Rng};
-use robowire::omnitiles::{Decoder, Framing};
+use robowire::omnitiles::{both_decoder, device_decoder, Both, BothDecoder, Framing};
 
 /// A UART read or write error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -156,8 +156,8 @@ fn mixed_input(seed: u64) -> Vec<u8> {
 
 /// The engine's events for `input` split into streams at `ends`, each
 /// finished.
-fn streams_oracle(framing: Framing, input: &[u8], ends: &[usize]) -> Vec<Ev> {
-    let mut decoder = Decoder::new(framing);
+fn streams_oracle(framing: Framing<Both>, input: &[u8], ends: &[usize]) -> Vec<Ev> {
+    let mut decoder = BothDecoder::new(framing);
     let mut events = Vec::new();
     let mut from = 0;
     for &end in ends.iter().chain([&input.len()]) {
@@ -173,12 +173,12 @@ mod blocking {
     use super::*;
     use robowire::io::embedded_io::{PacketReader, PacketWriter};
     use robowire::io::WriteError;
-    use robowire::omnitiles::{Command, Layout, Motor, Packet, Telemetry};
+    use robowire::omnitiles::{Command, Layout, Message, Motor, Telemetry};
     use robowire::{Encode, EncodeError};
 
     /// Read events until the end of the input, counting read errors.
     fn drain<B: AsRef<[u8]> + AsMut<[u8]>>(
-        reader: &mut PacketReader<Uart, Framing, { robowire::omnitiles::BUFFER_LEN }, B>,
+        reader: &mut PacketReader<Uart, Framing<Both>, { robowire::omnitiles::BOTH_BUFFER }, B>,
     ) -> (Vec<Ev>, usize) {
         let (mut events, mut errors) = (Vec::new(), 0);
         loop {
@@ -193,13 +193,13 @@ mod blocking {
     #[test]
     fn events_match_the_engine_for_any_read_size_and_buffer() {
         let input = mixed_input(3);
-        let expected = engine_events(Framing::ANY, &input);
+        let expected = engine_events(Framing::<Both>::new(), &input);
         assert!(expected.iter().any(|e| e.is_err()) && expected.iter().any(|e| e.is_ok()));
         for max in [1, 2, 3, 5, 8, 53, 64, 1000] {
             for buf_len in [1, 2, 7, 16, 64, 256] {
                 let mut buf = vec![0u8; buf_len];
                 let uart = Uart::new(input.clone(), max);
-                let decoder = Decoder::new(Framing::ANY);
+                let decoder = both_decoder();
                 let mut reader = PacketReader::new(uart, decoder, &mut buf[..]);
                 let (events, errors) = drain(&mut reader);
                 assert_eq!(errors, 0);
@@ -216,10 +216,10 @@ mod blocking {
         let input = mixed_input(5);
         let mut uart = Uart::new(input.clone(), 7);
         uart.glitches = vec![0, 1, 100, 101, 400, input.len()];
-        let mut reader = PacketReader::new(uart, Decoder::new(Framing::ANY), [0u8; 16]);
+        let mut reader = PacketReader::new(uart, both_decoder(), [0u8; 16]);
         let (events, errors) = drain(&mut reader);
         assert_eq!(errors, 6);
-        assert_eq!(events, engine_events(Framing::ANY, &input));
+        assert_eq!(events, engine_events(Framing::<Both>::new(), &input));
     }
 
     #[test]
@@ -229,7 +229,7 @@ mod blocking {
         let ends = vec![30, 31, 200, 202, 203];
         let mut uart = Uart::new(input.clone(), 5);
         uart.ends = ends.clone();
-        let mut reader = PacketReader::new(uart, Decoder::new(Framing::ANY), [0u8; 8]);
+        let mut reader = PacketReader::new(uart, both_decoder(), [0u8; 8]);
         let mut events = Vec::new();
         let mut streams = 0;
         while streams <= ends.len() {
@@ -238,7 +238,10 @@ mod blocking {
             events.append(&mut stream);
             streams += 1;
         }
-        assert_eq!(events, streams_oracle(Framing::ANY, &input, &ends));
+        assert_eq!(
+            events,
+            streams_oracle(Framing::<Both>::new(), &input, &ends)
+        );
         assert_eq!(reader.decoder().buffered(), 0);
         // At the end for good: still `None`, no error.
         assert!(matches!(reader.read_event(), Ok(None)));
@@ -247,10 +250,10 @@ mod blocking {
     #[test]
     fn read_message_skips_rejections() {
         let input = mixed_input(13);
-        let expected = engine_events(Framing::ANY, &input);
+        let expected = engine_events(Framing::<Both>::new(), &input);
         let mut buf = [0u8; 10];
         let uart = Uart::new(input, 4);
-        let mut reader = PacketReader::new(uart, Decoder::new(Framing::ANY), &mut buf[..]);
+        let mut reader = PacketReader::new(uart, both_decoder(), &mut buf[..]);
         let mut frames = Vec::new();
         while let Some(frame) = reader.read_message().unwrap() {
             frames.push(frame);
@@ -269,9 +272,9 @@ mod blocking {
         let ping = [0xa5, 0x50, 0x50];
         let input: Vec<u8> = ping.iter().chain(&ping).chain(&[0x00]).copied().collect();
         let uart = Uart::new(input, 100);
-        let mut reader = PacketReader::new(uart, Decoder::new(Framing::commands()), [0u8; 16]);
+        let mut reader = PacketReader::new(uart, device_decoder(), [0u8; 16]);
         let first = reader.read_event().unwrap().unwrap().unwrap();
-        assert_eq!(first.message, Packet::Command(Command::Ping));
+        assert_eq!(first.message, Command::Ping);
         assert_eq!(reader.unread(), [0xa5, 0x50, 0x50, 0x00]);
         let (uart, decoder, buf) = reader.into_parts();
         assert_eq!(uart.pos, 7);
@@ -283,19 +286,19 @@ mod blocking {
     #[should_panic(expected = "at least one byte")]
     fn an_empty_buffer_is_refused() {
         let uart = Uart::new(vec![0xa5], 1);
-        let _ = PacketReader::new(uart, Decoder::new(Framing::ANY), [0u8; 0]);
+        let _ = PacketReader::new(uart, both_decoder(), [0u8; 0]);
     }
 
     #[test]
     fn writer_sends_whole_frames_through_short_writes() {
         let messages = [
-            Packet::Command(Command::BaseVelocity {
+            Message::Command(Command::BaseVelocity {
                 vx: 1,
                 vy: -2,
                 omega: 3,
             }),
-            Packet::Telemetry(io_common::telemetry(40)),
-            Packet::Command(Command::Brake { motor: Motor::M2 }),
+            Message::Telemetry(io_common::telemetry(40)),
+            Message::Command(Command::Brake { motor: Motor::M2 }),
         ];
         let mut tx = PacketWriter::<_, 64>::new(Tx::new(3));
         for m in &messages {
@@ -349,11 +352,11 @@ mod blocking {
 mod nonblocking {
     use super::*;
     use robowire::io::embedded_io_async::{PacketReader, PacketWriter};
-    use robowire::omnitiles::{Command, Motor, Packet};
+    use robowire::omnitiles::{Command, Message, Motor};
     use robowire::Encode;
 
     async fn drain<B: AsRef<[u8]> + AsMut<[u8]>>(
-        reader: &mut PacketReader<Uart, Framing, { robowire::omnitiles::BUFFER_LEN }, B>,
+        reader: &mut PacketReader<Uart, Framing<Both>, { robowire::omnitiles::BOTH_BUFFER }, B>,
     ) -> (Vec<Ev>, usize) {
         let (mut events, mut errors) = (Vec::new(), 0);
         loop {
@@ -368,12 +371,12 @@ mod nonblocking {
     #[tokio::test]
     async fn events_match_the_engine_for_any_read_size_and_buffer() {
         let input = mixed_input(21);
-        let expected = engine_events(Framing::ANY, &input);
+        let expected = engine_events(Framing::<Both>::new(), &input);
         for max in [1, 3, 8, 64] {
             for buf_len in [1, 7, 64] {
                 let mut buf = vec![0u8; buf_len];
                 let uart = Uart::new(input.clone(), max);
-                let mut reader = PacketReader::new(uart, Decoder::new(Framing::ANY), &mut buf[..]);
+                let mut reader = PacketReader::new(uart, both_decoder(), &mut buf[..]);
                 let (events, errors) = drain(&mut reader).await;
                 assert_eq!(errors, 0);
                 assert_eq!(events, expected, "reads of {max}, buffer of {buf_len}");
@@ -388,7 +391,7 @@ mod nonblocking {
         let mut uart = Uart::new(input.clone(), 6);
         uart.ends = ends.clone();
         uart.glitches = vec![0, 17, 90];
-        let mut reader = PacketReader::new(uart, Decoder::new(Framing::ANY), [0u8; 12]);
+        let mut reader = PacketReader::new(uart, both_decoder(), [0u8; 12]);
         let (mut events, mut errors) = (Vec::new(), 0);
         for _ in 0..=ends.len() {
             let (mut stream, e) = drain(&mut reader).await;
@@ -396,7 +399,10 @@ mod nonblocking {
             errors += e;
         }
         assert_eq!(errors, 3);
-        assert_eq!(events, streams_oracle(Framing::ANY, &input, &ends));
+        assert_eq!(
+            events,
+            streams_oracle(Framing::<Both>::new(), &input, &ends)
+        );
     }
 
     #[tokio::test]
@@ -410,15 +416,14 @@ mod nonblocking {
         let mut wire = tx.into_inner().out;
         wire.insert(0, 0xa5); // a false start
         let uart = Uart::new(wire, 5);
-        let mut reader = PacketReader::new(uart, Decoder::new(Framing::commands()), [0u8; 4]);
+        let mut reader = PacketReader::new(uart, device_decoder(), [0u8; 4]);
         let mut received = Vec::new();
         while let Some(frame) = reader.read_message().await.unwrap() {
             received.push(frame.message);
         }
-        let sent: Vec<Packet> = commands.into_iter().map(Packet::from).collect();
-        assert_eq!(received, sent);
+        assert_eq!(received, commands);
         assert!(reader.last_rejected().is_some());
-        let too_long = Packet::Command(Command::Extend {
+        let too_long = Message::Command(Command::Extend {
             motor: Motor::M1,
             speed: 1,
         });

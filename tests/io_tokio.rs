@@ -10,15 +10,18 @@ use futures_util::{SinkExt, StreamExt};
 use io_common::{
     encoded, engine_events, frame, noisy_commands, noisy_telemetry, packets, telemetry, Ev, Rng,
 };
-use robowire::io::tokio::{Events, FrameCodec, OmniTilesCodec};
+use robowire::io::tokio::{
+    Events, FrameCodec, OmniTilesCodec, OmniTilesDeviceCodec, OmniTilesHostCodec,
+};
 use robowire::omnitiles::{
-    Command, Decoder, Error, Framing, Layout, Layouts, Motor, Packet, Telemetry,
+    Both, Command, Error, Framing, Host, HostDecoder, Layout, Layouts, Message, Motor, Side,
+    Telemetry,
 };
 use robowire::Rejected;
 use tokio::io::{AsyncReadExt, AsyncWriteExt, DuplexStream};
 use tokio_util::codec::{Decoder as _, Framed, FramedRead, FramedWrite};
 
-const BLE53: Framing = Framing::telemetry(Layouts::only(Layout::Ble53));
+const BLE53: Framing<Host> = Framing::new().with_layouts(Layouts::only(Layout::Ble53));
 
 /// The read end of a pipe that a task fills with `bytes`, `chunk` bytes per
 /// write, then closes.
@@ -33,8 +36,13 @@ fn pipe(bytes: Vec<u8>, chunk: usize, capacity: usize) -> DuplexStream {
     rx
 }
 
-async fn read_events(framing: Framing, bytes: Vec<u8>, chunk: usize, capacity: usize) -> Vec<Ev> {
-    let codec = OmniTilesCodec::new(framing).events();
+async fn read_events<S: Side>(
+    framing: Framing<S>,
+    bytes: Vec<u8>,
+    chunk: usize,
+    capacity: usize,
+) -> Vec<Ev<S>> {
+    let codec = FrameCodec::<_, 128, _>::new(framing).events();
     FramedRead::new(pipe(bytes, chunk, capacity), codec)
         .map(|item| item.expect("the codec never fails"))
         .collect()
@@ -47,15 +55,16 @@ async fn events_match_the_engine_at_any_chunking() {
     let (telemetry, sent) = noisy_telemetry(&mut rng, 60);
     let (commands, _) = noisy_commands(&mut rng, 60);
     let mixed: Vec<u8> = telemetry.iter().chain(&commands).copied().collect();
-    let cases = [(BLE53, &telemetry), (Framing::ANY, &mixed)];
-    for (framing, input) in cases {
+    async fn check<S: Side>(framing: Framing<S>, input: &[u8]) {
         let expected = engine_events(framing, input);
         assert!(expected.iter().any(|e| e.is_err()), "the input has noise");
         for (chunk, capacity) in [(1, 1), (3, 8), (7, 64), (53, 16), (64, 64), (4096, 4096)] {
-            let events = read_events(framing, input.clone(), chunk, capacity).await;
+            let events = read_events(framing, input.to_vec(), chunk, capacity).await;
             assert_eq!(events, expected, "chunk {chunk}, pipe capacity {capacity}");
         }
     }
+    check(BLE53, &telemetry).await;
+    check(Framing::<Both>::new(), &mixed).await;
     // With the layout named, every intact frame comes through the noise.
     assert_eq!(packets(&engine_events(BLE53, &telemetry)), sent);
 }
@@ -63,12 +72,12 @@ async fn events_match_the_engine_at_any_chunking() {
 #[tokio::test]
 async fn messages_skip_rejections_and_count_them() {
     let (input, sent) = noisy_telemetry(&mut Rng::new(11), 80);
-    let mut oracle = Decoder::new(BLE53);
-    let oracle_events: Vec<Ev> = oracle.feed(&input).collect();
+    let mut oracle = HostDecoder::new(BLE53);
+    let oracle_events: Vec<Ev<Host>> = oracle.feed(&input).collect();
     oracle.flush().for_each(drop);
     let last_oracle_rejection = oracle_events.iter().rev().find_map(|e| e.err());
 
-    let mut reader = FramedRead::new(pipe(input, 5, 32), OmniTilesCodec::new(BLE53));
+    let mut reader = FramedRead::new(pipe(input, 5, 32), OmniTilesHostCodec::new(BLE53));
     let mut received = Vec::new();
     while let Some(item) = reader.next().await {
         received.push(item.unwrap().message);
@@ -84,12 +93,12 @@ async fn messages_skip_rejections_and_count_them() {
 async fn end_of_input_confirms_a_short_frame_and_rejects_a_truncated_tail() {
     // Any documented layout: a 7-byte frame is confirmed only by the next
     // header or by the end of the input.
-    let pos7 = Packet::Telemetry(Telemetry {
+    let pos7 = Message::Telemetry(Telemetry {
         m1_pos: Some(2000),
         m2_pos: Some(1000),
         ..Telemetry::empty(Layout::Pos7)
     });
-    let ping = Packet::Command(Command::Ping);
+    let ping = Message::Command(Command::Ping);
     let mut input = frame(&ping);
     input.extend(frame(&pos7));
 
@@ -107,7 +116,7 @@ async fn end_of_input_confirms_a_short_frame_and_rejects_a_truncated_tail() {
     // A truncated frame (its header confirms the 7-byte frame) and garbage
     // at the end: rejections, not errors.
     input.extend([0xa5, 0x60, 0x01, 0x02]);
-    let events = read_events(Framing::ANY, input.clone(), 4, 8).await;
+    let events = read_events(Framing::<Both>::new(), input.clone(), 4, 8).await;
     assert_eq!(packets(&events), [ping, pos7]);
     let offset = input.len() as u64 - 4;
     assert_eq!(
@@ -117,7 +126,7 @@ async fn end_of_input_confirms_a_short_frame_and_rejects_a_truncated_tail() {
             error: Error::Truncated { len: 4 }
         })
     );
-    assert_eq!(events, engine_events(Framing::ANY, &input));
+    assert_eq!(events, engine_events(Framing::<Both>::new(), &input));
 
     let mut reader = FramedRead::new(pipe(input, 4, 8), OmniTilesCodec::default());
     let mut received = Vec::new();
@@ -130,7 +139,7 @@ async fn end_of_input_confirms_a_short_frame_and_rejects_a_truncated_tail() {
 
 #[tokio::test]
 async fn after_the_end_a_codec_takes_a_new_stream() {
-    let mut codec = OmniTilesCodec::new(Framing::commands()).events();
+    let mut codec = OmniTilesDeviceCodec::default().events();
     let mut buf = BytesMut::from(&[0xa5, 0x30, 0xc8][..]); // cut short
     assert!(codec.decode(&mut buf).unwrap().is_none());
     let rejected = codec.decode_eof(&mut buf).unwrap().unwrap();
@@ -138,10 +147,7 @@ async fn after_the_end_a_codec_takes_a_new_stream() {
     assert!(codec.decode_eof(&mut buf).unwrap().is_none());
     buf.extend_from_slice(&[0xa5, 0x50, 0x50]);
     let frame = codec.decode(&mut buf).unwrap().unwrap().unwrap();
-    assert_eq!(
-        (frame.offset, frame.message),
-        (3, Packet::Command(Command::Ping))
-    );
+    assert_eq!((frame.offset, frame.message), (3, Command::Ping));
 }
 
 #[tokio::test]
@@ -160,7 +166,7 @@ async fn encoder_writes_frames_and_refuses_what_it_cannot_encode() {
     let err = writer.send(bad).await.unwrap_err();
     assert_eq!(err.kind(), io::ErrorKind::InvalidInput);
     let good = telemetry(5);
-    writer.send(Packet::Telemetry(good)).await.unwrap();
+    writer.send(Message::Telemetry(good)).await.unwrap();
     drop(writer);
 
     let mut wire = Vec::new();
@@ -175,10 +181,10 @@ async fn host_and_tile_over_framed() {
     let (host_io, tile_io) = tokio::io::duplex(64);
     let tile = tokio::spawn(async move {
         // A tile answers every command with a telemetry frame.
-        let mut link = Framed::new(tile_io, OmniTilesCodec::new(Framing::commands()));
+        let mut link = Framed::new(tile_io, OmniTilesDeviceCodec::default());
         let mut m1 = 0u16;
         while let Some(frame) = link.next().await {
-            if let Packet::Command(Command::Extend { speed, .. }) = frame.unwrap().message {
+            if let Command::Extend { speed, .. } = frame.unwrap().message {
                 m1 += u16::from(speed);
             }
             let reply = Telemetry {
@@ -190,8 +196,7 @@ async fn host_and_tile_over_framed() {
         link.codec().stats().frames
     });
 
-    let codec: FrameCodec<Framing, 64, Events> =
-        FrameCodec::new(Framing::telemetry(Layouts::only(Layout::Ble53))).events();
+    let codec: FrameCodec<Framing<Host>, 64, Events> = FrameCodec::new(BLE53).events();
     let mut link = Framed::new(host_io, codec);
     for speed in [10, 20, 30] {
         let extend = Command::Extend {
@@ -200,9 +205,7 @@ async fn host_and_tile_over_framed() {
         };
         link.send(extend).await.unwrap();
         let reply = link.next().await.unwrap().unwrap().unwrap();
-        let Packet::Telemetry(t) = reply.message else {
-            panic!("telemetry expected")
-        };
+        let t = reply.message;
         assert_eq!(reply.len, 53);
         assert_eq!(t.m1_pos, Some([10, 30, 60][usize::from(speed / 10 - 1)]));
     }

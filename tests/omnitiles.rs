@@ -1,12 +1,14 @@
 //! OmniTiles: golden vectors, resync, chunking invariance, layouts, datagrams.
 
-use robowire::omnitiles::{
-    units, Command, DatagramDecoder, Decoder, Error, Framing, Imu, Layout, Layouts, Motor, Packet,
-    Telemetry,
-};
-use robowire::{Encode, FrameBuf, OwnedEvent, OwnedFrame, Rejected};
+#[path = "support/omnitiles_sides.rs"]
+mod sides;
 
-type Ev = OwnedEvent<Framing>;
+use robowire::omnitiles::{
+    units, BothDatagramDecoder, Command, Error, Framing, HostDatagramDecoder, Imu, Layout, Layouts,
+    Message, Motor, Telemetry,
+};
+use robowire::{Encode, FrameBuf, OwnedFrame, Rejected};
+use sides::{any, commands, telemetry, AnyDecoder, AnyFraming, Ev};
 
 fn hex(s: &str) -> Vec<u8> {
     s.split_whitespace()
@@ -15,8 +17,8 @@ fn hex(s: &str) -> Vec<u8> {
 }
 
 /// Decode `input` fed in chunks of `chunk` bytes, then finish.
-fn decode_chunked(framing: Framing, input: &[u8], chunk: usize) -> Vec<Ev> {
-    let mut decoder = Decoder::new(framing);
+fn decode_chunked(framing: AnyFraming, input: &[u8], chunk: usize) -> Vec<Ev> {
+    let mut decoder = AnyDecoder::new(framing);
     let mut events = Vec::new();
     for piece in input.chunks(chunk.max(1)) {
         events.extend(decoder.feed(piece));
@@ -28,19 +30,19 @@ fn decode_chunked(framing: Framing, input: &[u8], chunk: usize) -> Vec<Ev> {
     events
 }
 
-fn decode(framing: Framing, input: &[u8]) -> Vec<Ev> {
+fn decode(framing: AnyFraming, input: &[u8]) -> Vec<Ev> {
     decode_chunked(framing, input, input.len())
 }
 
-fn packets(events: &[Ev]) -> Vec<Packet> {
+fn packets(events: &[Ev]) -> Vec<Message> {
     events
         .iter()
         .filter_map(|e| e.as_ref().ok().map(|f| f.message))
         .collect()
 }
 
-fn cmd(c: Command) -> Packet {
-    Packet::Command(c)
+fn cmd(c: Command) -> Message {
+    Message::Command(c)
 }
 
 const M1: Motor = Motor::M1;
@@ -217,7 +219,7 @@ fn golden_commands_encode_and_decode() {
             "{bytes}"
         );
         assert_eq!(command.encoded_len(), wire.len());
-        for framing in [Framing::commands(), Framing::ANY] {
+        for framing in [commands(), any()] {
             let events = decode(framing, &wire);
             assert_eq!(
                 events,
@@ -230,10 +232,7 @@ fn golden_commands_encode_and_decode() {
             );
         }
         // A telemetry-only decoder does not accept commands.
-        assert_eq!(
-            packets(&decode(Framing::telemetry(Layouts::ALL), &wire)),
-            []
-        );
+        assert_eq!(packets(&decode(telemetry(Layouts::ALL), &wire)), []);
     }
 }
 
@@ -246,14 +245,11 @@ fn golden_telemetry_encode_and_decode() {
             &wire[..],
             "{bytes}"
         );
-        assert_eq!(Telemetry::from_frame(&wire), Some(telemetry));
-        for framing in [
-            Framing::ANY,
-            Framing::telemetry(Layouts::only(telemetry.layout)),
-        ] {
+        assert_eq!(Telemetry::try_from(&wire[..]).ok(), Some(telemetry));
+        for framing in [any(), sides::telemetry(Layouts::only(telemetry.layout))] {
             assert_eq!(
                 packets(&decode(framing, &wire)),
-                [Packet::Telemetry(telemetry)],
+                [Message::Telemetry(telemetry)],
                 "{bytes}"
             );
         }
@@ -262,7 +258,7 @@ fn golden_telemetry_encode_and_decode() {
 
 #[test]
 fn golden_telemetry_units() {
-    let t = Telemetry::from_frame(&hex(T7)).unwrap();
+    let t = Telemetry::try_from(&hex(T7)[..]).ok().unwrap();
     assert!((units::adc_to_mm(M1, t.m1_pos.unwrap()) - 73.26).abs() < 0.01);
     assert!((units::adc_to_mm(M2, t.m2_pos.unwrap()) - 24.42).abs() < 0.01);
     assert!((units::position_to_mm(M1, 128) - 75.29).abs() < 0.01);
@@ -300,7 +296,7 @@ fn resync_by_one() {
         motor: M1,
         speed: 200,
     });
-    let events = decode(Framing::ANY, &hex("a5 a5 30 c8 f8"));
+    let events = decode(any(), &hex("a5 a5 30 c8 f8"));
     assert_eq!(
         events[0],
         Err(Rejected {
@@ -319,7 +315,7 @@ fn resync_by_one() {
     assert_eq!(events.len(), 2);
 
     // The failed candidate a5 30 a5 32 swallowed the start of M1 brake.
-    let events = decode(Framing::ANY, &hex("a5 30 a5 32 32"));
+    let events = decode(any(), &hex("a5 30 a5 32 32"));
     assert_eq!(
         events,
         [
@@ -344,7 +340,7 @@ fn start_byte_inside_payload_and_checksum_is_data() {
     // Payload byte a5, and a checksum of a5 (0x30 + 0x75).
     let input = hex("a5 70 a5 00 00 15 a5 30 75 a5");
     assert_eq!(
-        packets(&decode(Framing::ANY, &input)),
+        packets(&decode(any(), &input)),
         [
             cmd(Command::BaseVelocity {
                 vx: -91,
@@ -371,7 +367,7 @@ fn garbage_ending_in_start_byte_before_a_command_loses_nothing() {
     ] {
         let mut input = hex(garbage);
         input.extend(hex("a5 32 32 a5 71 71"));
-        let got = packets(&decode(Framing::commands(), &input));
+        let got = packets(&decode(commands(), &input));
         assert_eq!(
             got,
             [cmd(Command::Brake { motor: M1 }), cmd(Command::BaseBrake)],
@@ -396,18 +392,14 @@ fn mixed_stream() -> Vec<u8> {
 #[test]
 fn every_split_point_gives_the_same_events() {
     let input = mixed_stream();
-    for framing in [
-        Framing::ANY,
-        Framing::commands(),
-        Framing::telemetry(Layouts::only(Layout::Ble53)),
-    ] {
+    for framing in [any(), commands(), telemetry(Layouts::only(Layout::Ble53))] {
         let whole = decode(framing, &input);
         assert!(!packets(&whole).is_empty());
         // Under Miri (an interpreter) every fifth split point: the same code
         // paths at a fraction of the cost.
         let step = if cfg!(miri) { 5 } else { 1 };
         for split in (0..=input.len()).step_by(step) {
-            let mut decoder = Decoder::new(framing);
+            let mut decoder = AnyDecoder::new(framing);
             let mut events: Vec<Ev> = decoder.feed(&input[..split]).collect();
             events.extend(decoder.feed(&input[split..]));
             events.extend(decoder.flush());
@@ -426,15 +418,15 @@ fn every_split_point_gives_the_same_events() {
 #[test]
 fn push_equals_whole_decode() {
     let input = mixed_stream();
-    for framing in [Framing::ANY, Framing::commands()] {
-        let mut decoder = Decoder::new(framing);
+    for framing in [any(), commands()] {
+        let mut decoder = AnyDecoder::new(framing);
         let mut events = Vec::new();
         for &b in &input {
             if let Some(e) = decoder.push(b) {
-                events.push(robowire::stream::owned_event::<Framing>(e));
+                events.push(e);
             }
             while let Some(e) = decoder.poll() {
-                events.push(robowire::stream::owned_event::<Framing>(e));
+                events.push(e);
             }
         }
         events.extend(decoder.flush());
@@ -444,15 +436,13 @@ fn push_equals_whole_decode() {
 
 #[test]
 fn every_proper_prefix_needs_more() {
-    let commands = command_vectors()
-        .into_iter()
-        .map(|(b, _)| (b, Framing::commands()));
-    let telemetry = [T7, T15, T17, T53].map(|b| (b, Framing::telemetry(Layouts::ALL)));
+    let commands = command_vectors().into_iter().map(|(b, _)| (b, commands()));
+    let telemetry = [T7, T15, T17, T53].map(|b| (b, telemetry(Layouts::ALL)));
     for (bytes, framing) in commands.chain(telemetry) {
         let wire = hex(bytes);
-        for framing in [Framing::ANY, framing] {
+        for framing in [any(), framing] {
             for cut in 1..wire.len() {
-                let mut decoder = Decoder::new(framing);
+                let mut decoder = AnyDecoder::new(framing);
                 let mut input = &wire[..cut];
                 assert!(decoder.decode(&mut input).is_none(), "{bytes} cut at {cut}");
                 assert!(input.is_empty(), "prefix fully taken");
@@ -468,7 +458,7 @@ fn truncated_frame_is_reported_at_finish_and_rescanned() {
     // A truncated extend whose bytes hold a complete brake.
     let input = hex("a5 70 a5 32 32");
     assert_eq!(
-        decode(Framing::commands(), &input),
+        decode(commands(), &input),
         [
             Err(Rejected {
                 offset: 0,
@@ -486,7 +476,7 @@ fn truncated_frame_is_reported_at_finish_and_rescanned() {
 #[test]
 fn zero_copy_fast_path_borrows_the_input() {
     let input = hex("00 a5 32 32 a5 40");
-    let mut decoder = Decoder::new(Framing::ANY);
+    let mut decoder = robowire::omnitiles::both_decoder();
     let mut rest = &input[..];
     let frame = decoder.decode(&mut rest).unwrap().unwrap();
     assert_eq!(frame.raw.as_ptr(), input[1..].as_ptr(), "decoded in place");
@@ -500,9 +490,9 @@ fn zero_copy_fast_path_borrows_the_input() {
 #[test]
 fn checksum_failures_are_counted() {
     let input = hex("a5 30 c8 f7 a5 50 50 a5 99 a5 42 43");
-    let events = decode(Framing::ANY, &input);
+    let events = decode(any(), &input);
     assert_eq!(packets(&events), [cmd(Command::Ping)]);
-    let mut decoder = Decoder::new(Framing::ANY);
+    let mut decoder = AnyDecoder::new(any());
     decoder.feed(&input).for_each(drop);
     let s = decoder.stats();
     assert_eq!((s.frames, s.checksum_errors, s.rejected), (1, 2, 1));
@@ -567,9 +557,9 @@ fn mixed_layouts_on_a_clean_stream_give_no_false_and_no_lost_frames() {
             .map(|i| sample(kinds[(i as usize * 7 + i as usize / 3) % kinds.len()], i))
             .collect();
         let input = encode_all(&messages);
-        let want: Vec<Packet> = messages.iter().copied().map(Packet::Telemetry).collect();
+        let want: Vec<Message> = messages.iter().copied().map(Message::Telemetry).collect();
         for chunk in [1, 7, 20, 53, 244, input.len()] {
-            let events = decode_chunked(Framing::telemetry(layouts), &input, chunk);
+            let events = decode_chunked(telemetry(layouts), &input, chunk);
             assert!(
                 events.iter().all(|e| e.is_ok()),
                 "no rejections on a clean stream"
@@ -582,17 +572,17 @@ fn mixed_layouts_on_a_clean_stream_give_no_false_and_no_lost_frames() {
 #[test]
 fn longest_layout_is_emitted_as_soon_as_complete() {
     let frame = hex(T53);
-    let mut decoder = Decoder::new(Framing::ANY);
+    let mut decoder = AnyDecoder::new(any());
     let events: Vec<Ev> = decoder.feed(&frame).collect();
     assert_eq!(events.len(), 1, "no flush needed");
     // A shorter layout waits for the next header...
     let short = hex(T17);
-    let mut decoder = Decoder::new(Framing::ANY);
+    let mut decoder = AnyDecoder::new(any());
     assert_eq!(decoder.feed(&short).count(), 0);
     assert_eq!(decoder.feed(&[0xa5]).count(), 0);
     assert_eq!(decoder.feed(&[0x60]).count(), 1, "confirmed by a5 60");
     // ...unless it is the only layout enabled.
-    let mut decoder = Decoder::new(Framing::telemetry(Layouts::only(Layout::UwbTof17)));
+    let mut decoder = AnyDecoder::new(telemetry(Layouts::only(Layout::UwbTof17)));
     assert_eq!(decoder.feed(&short).count(), 1);
 }
 
@@ -605,20 +595,20 @@ fn spi_buffer_with_one_45_byte_frame() {
     let mut buffer = [0u8; 128];
     buffer[..45].copy_from_slice(&frame);
     // Datagram: picked by length, padding tolerated.
-    let mut datagrams = DatagramDecoder::new(Framing::telemetry(Layouts::ALL));
-    let events: Vec<Ev> = datagrams.decode(&buffer).collect();
+    let mut datagrams = HostDatagramDecoder::new(Framing::new().with_layouts(Layouts::ALL));
+    let events: Vec<_> = datagrams.decode(&buffer).collect();
     assert_eq!(
         events,
         [Ok(OwnedFrame {
             offset: 0,
             len: 45,
-            message: Packet::Telemetry(t)
+            message: t
         })]
     );
     assert_eq!(datagrams.stats().skipped, 83);
     // Stream: with the SPI layout alone.
-    let events = decode(Framing::telemetry(Layouts::only(Layout::Spi45)), &buffer);
-    assert_eq!(packets(&events), [Packet::Telemetry(t)]);
+    let events = decode(telemetry(Layouts::only(Layout::Spi45)), &buffer);
+    assert_eq!(packets(&events), [Message::Telemetry(t)]);
 }
 
 #[test]
@@ -631,18 +621,19 @@ fn spi_padding_trap_does_not_fool_the_datagram_decoder() {
         .expect("some sample sums to zero");
     let mut buffer = [0u8; 128];
     buffer[..45].copy_from_slice(&FrameBuf::<53>::encode(&t).unwrap());
-    let mut datagrams = DatagramDecoder::new(Framing::telemetry(Layouts::ALL));
-    assert_eq!(
-        packets(&datagrams.decode(&buffer).collect::<Vec<_>>()),
-        [Packet::Telemetry(t)]
-    );
+    let mut datagrams = HostDatagramDecoder::new(Framing::new().with_layouts(Layouts::ALL));
+    let messages: Vec<Telemetry> = datagrams
+        .decode(&buffer)
+        .map(|e| e.unwrap().message)
+        .collect();
+    assert_eq!(messages, [t]);
 }
 
 #[test]
 fn datagrams() {
     let mut brake = [0u8; 128];
     brake[..6].copy_from_slice(&hex("a5 32 32 a5 42 42"));
-    let mut d = DatagramDecoder::new(Framing::ANY);
+    let mut d = BothDatagramDecoder::new(Framing::new());
     let events: Vec<Ev> = d.decode(&brake).collect();
     assert_eq!(
         events,
@@ -667,10 +658,10 @@ fn datagrams() {
     let offsets: Vec<u64> = events.iter().map(|e| e.as_ref().unwrap().offset).collect();
     assert_eq!(offsets, [128, 135, 150, 167]);
     // A 17-byte datagram is decoded as the 17-byte layout, not as 7 + garbage.
-    let t17 = Telemetry::from_frame(&hex(T17)).unwrap();
+    let t17 = Telemetry::try_from(&hex(T17)[..]).ok().unwrap();
     assert_eq!(
         packets(&d.decode(&hex(T17)).collect::<Vec<_>>()),
-        [Packet::Telemetry(t17)]
+        [Message::Telemetry(t17)]
     );
     // A corrupt command is reported; the one after it still comes out.
     let events: Vec<Ev> = d.decode(&hex("a5 30 c8 f7 a5 50 50")).collect();
@@ -695,12 +686,12 @@ fn sentinels_and_absent_fields() {
     t.m2_pos = Some(0);
     let wire = FrameBuf::<53>::encode(&t).unwrap();
     assert_eq!(&wire[2..6], [0xff, 0xff, 0x00, 0x00]);
-    let back = Telemetry::from_frame(&wire).unwrap();
+    let back = Telemetry::try_from(&wire[..]).ok().unwrap();
     assert_eq!(back.m1_pos, None);
     assert_eq!(back.uwb, Some([None; 4]));
     assert_eq!(back.tof, Some(None));
     assert_eq!(
-        Telemetry::from_frame(&hex(T7)).unwrap().tof,
+        Telemetry::try_from(&hex(T7)[..]).ok().unwrap().tof,
         None,
         "not carried"
     );
@@ -744,7 +735,7 @@ fn nan_bit_patterns_round_trip() {
         ..Imu::default()
     });
     let wire = FrameBuf::<53>::encode(&t).unwrap();
-    let back = Telemetry::from_frame(&wire).unwrap();
+    let back = Telemetry::try_from(&wire[..]).ok().unwrap();
     assert_eq!(back, t);
     assert_eq!(back.imu.unwrap().ax.to_bits(), 0x7fc0_1234);
     assert_eq!(&*FrameBuf::<53>::encode(&back).unwrap(), &*wire);
@@ -761,7 +752,7 @@ fn garbage_that_sums_right_does_not_swallow_a_real_frame() {
     // the real brake that follows it; both end at the same byte.
     let input = hex("13 a5 70 eb a5 32 32 a5 71 71");
     for chunk in 1..=input.len() {
-        let events = decode_chunked(Framing::commands(), &input, chunk);
+        let events = decode_chunked(commands(), &input, chunk);
         assert_eq!(
             events,
             [
@@ -786,17 +777,17 @@ fn garbage_that_sums_right_does_not_swallow_a_real_frame() {
     // `a5 70 00 2b a5 40` sums right and ends inside the real M2 extend.
     let input = hex("13 a5 70 00 2b a5 40 c8 08 a5 71 71");
     assert_eq!(
-        packets(&decode(Framing::commands(), &input)),
+        packets(&decode(commands(), &input)),
         [extend, cmd(Command::BaseBrake)]
     );
-    let mut decoder = Decoder::new(Framing::commands());
+    let mut decoder = AnyDecoder::new(commands());
     decoder.feed(&input).for_each(drop);
     assert_eq!(decoder.stats().superseded, 1);
     // Right after a frame the same bytes are trusted: a clean stream is
     // never delayed.
     let input = hex("a5 50 50 a5 70 eb a5 32 32");
     assert_eq!(
-        packets(&decode(Framing::commands(), &input)),
+        packets(&decode(commands(), &input)),
         [
             cmd(Command::Ping),
             cmd(Command::BaseVelocity {
@@ -834,7 +825,7 @@ fn encode_into_bufmut() {
 fn short_frame_followed_by_garbage_is_unconfirmed() {
     let mut input = hex(T7);
     input.extend([0x11; 60]);
-    let events = decode(Framing::ANY, &input);
+    let events = decode(any(), &input);
     assert_eq!(
         events,
         [Err(Rejected {
@@ -843,9 +834,264 @@ fn short_frame_followed_by_garbage_is_unconfirmed() {
         })]
     );
     // With its layout alone it needs no confirmation.
-    let events = decode(Framing::telemetry(Layouts::only(Layout::Pos7)), &input);
+    let events = decode(telemetry(Layouts::only(Layout::Pos7)), &input);
     assert_eq!(
         packets(&events),
-        [Packet::Telemetry(Telemetry::from_frame(&hex(T7)).unwrap())]
+        [Message::Telemetry(
+            Telemetry::try_from(&hex(T7)[..]).ok().unwrap()
+        )]
     );
+}
+
+// --- the 0.2 vocabulary ---------------------------------------------------
+
+#[test]
+fn messages_display_as_one_line_of_json_words() {
+    let lines = [
+        (Command::Ping, "ping"),
+        (
+            Command::Extend {
+                motor: M1,
+                speed: 200,
+            },
+            "m1_extend speed=200",
+        ),
+        (
+            Command::Retract {
+                motor: M2,
+                speed: 7,
+            },
+            "m2_retract speed=7",
+        ),
+        (Command::Brake { motor: M2 }, "m2_brake"),
+        (
+            Command::SetPosition {
+                motor: M1,
+                position: 128,
+            },
+            "m1_set_position position=128",
+        ),
+        (
+            Command::BaseVelocity {
+                vx: 10,
+                vy: -5,
+                omega: 20,
+            },
+            "base_velocity vx=10 vy=-5 omega=20",
+        ),
+        (Command::BaseBrake, "base_brake"),
+    ];
+    for (command, line) in lines {
+        assert_eq!(command.to_string(), line);
+        assert_eq!(Message::Command(command).to_string(), line);
+        assert_eq!(command.name(), line.split(' ').next().unwrap());
+    }
+    let t15 = Telemetry::try_from(&hex(T15)[..]).unwrap();
+    assert_eq!(
+        t15.to_string(),
+        "telemetry layout=uwb15 m1_pos=2000 m2_pos=1000 uwb=[1500,2500,null,3000]"
+    );
+    let t53 = Telemetry::try_from(&hex(T53)[..]).unwrap();
+    assert_eq!(
+        Message::Telemetry(t53).to_string(),
+        "telemetry layout=ble53 m1_pos=2000 m2_pos=1000 uwb=[1500,2500,3500,4500] tof=321 \
+         imu={ax=0.1,ay=0.2,az=9.8,gx=0.01,gy=-0.02,gz=0.03} m1_adcs=[2001,2002,2003,2004] \
+         m2_adcs=[1001,1002]"
+    );
+}
+
+#[test]
+fn names_parse_and_display_back() {
+    use robowire::omnitiles::UnknownName;
+    for layout in Layout::ALL {
+        assert_eq!(layout.to_string().parse(), Ok(layout));
+    }
+    for motor in Motor::ALL {
+        assert_eq!(motor.to_string().parse(), Ok(motor));
+    }
+    // Every set of layouts displays as text that parses back to it.
+    for bits in 0..32u8 {
+        let set: Layouts = Layout::ALL
+            .into_iter()
+            .enumerate()
+            .filter(|(i, _)| bits >> i & 1 == 1)
+            .map(|(_, l)| l)
+            .collect();
+        let text = set.to_string();
+        assert_eq!(text.parse(), Ok(set), "{text}");
+    }
+    assert_eq!("auto".parse(), Ok(Layouts::DOCUMENTED));
+    assert_eq!(Layouts::DOCUMENTED.to_string(), "auto");
+    assert_eq!(
+        "spi45,auto".parse::<Layouts>().unwrap().to_string(),
+        "auto,spi45"
+    );
+    assert_eq!("none".parse(), Ok(Layouts::NONE));
+    for bad in ["", "ble52", "auto,", "BLE53", " pos7"] {
+        let err: UnknownName = bad.parse::<Layouts>().unwrap_err();
+        assert_eq!(err.what(), "layout", "{bad:?}");
+    }
+    assert_eq!(
+        "m3".parse::<Motor>().unwrap_err().to_string(),
+        "unknown motor (expected m1 or m2)"
+    );
+    assert!("Ble53".parse::<Layout>().is_err());
+}
+
+#[test]
+fn try_from_takes_exactly_one_whole_frame() {
+    for (bytes, command) in command_vectors() {
+        let wire = hex(bytes);
+        assert_eq!(Command::try_from(&wire[..]), Ok(command), "{bytes}");
+        assert_eq!(Message::try_from(&wire[..]), Ok(Message::Command(command)));
+        // Short, long, corrupted, or the other direction's type: an error.
+        let n = wire.len();
+        assert_eq!(
+            Command::try_from(&wire[..n - 1]),
+            Err(Error::Truncated { len: n - 1 })
+        );
+        let mut long = wire.clone();
+        long.push(0);
+        assert_eq!(
+            Command::try_from(&long[..]),
+            Err(Error::BadLength { len: n + 1 })
+        );
+        let mut bad = wire.clone();
+        bad[n - 1] ^= 1;
+        assert!(matches!(
+            Command::try_from(&bad[..]),
+            Err(Error::Checksum { .. })
+        ));
+        assert_eq!(
+            Telemetry::try_from(&wire[..]),
+            Err(Error::UnknownId { id: wire[1] })
+        );
+    }
+    for (bytes, telemetry) in telemetry_vectors() {
+        let wire = hex(bytes);
+        assert_eq!(Telemetry::try_from(&wire[..]), Ok(telemetry), "{bytes}");
+        assert_eq!(
+            Message::try_from(&wire[..]),
+            Ok(Message::Telemetry(telemetry))
+        );
+        assert_eq!(
+            Command::try_from(&wire[..]),
+            Err(Error::UnknownId { id: 0x60 })
+        );
+        let n = wire.len();
+        assert_eq!(
+            Telemetry::try_from(&wire[..n - 1]),
+            Err(Error::BadLength { len: n - 1 })
+        );
+    }
+    assert_eq!(Message::try_from(&[][..]), Err(Error::Truncated { len: 0 }));
+    assert_eq!(
+        Message::try_from(&[0xa5][..]),
+        Err(Error::Truncated { len: 1 })
+    );
+    assert_eq!(
+        Message::try_from(&[0x5a, 0x50, 0x50][..]),
+        Err(Error::BadStart { found: 0x5a })
+    );
+    assert_eq!(
+        Message::try_from(&[0xa5, 0x99, 0x99][..]),
+        Err(Error::UnknownId { id: 0x99 })
+    );
+}
+
+#[test]
+fn each_side_yields_its_own_messages() {
+    use robowire::omnitiles::{both_decoder, device_decoder, host_decoder, Both, Device, Host};
+    use robowire::omnitiles::{BothDecoder, DeviceDecoder, HostDecoder};
+    // The constructors are const: a decoder can be a static's initial value.
+    const DEVICE: DeviceDecoder = device_decoder();
+    const HOST: HostDecoder = host_decoder();
+    const BOTH: BothDecoder = both_decoder();
+    let input = mixed_stream();
+    let both = decode(any(), &input);
+
+    let mut host = HOST;
+    let mut telemetry: Vec<Telemetry> = host
+        .feed(&input)
+        .filter_map(|e| e.ok().map(|f| f.message))
+        .collect();
+    telemetry.extend(host.flush().filter_map(|e| e.ok().map(|f| f.message)));
+    let mut device = DEVICE;
+    let mut commands: Vec<Command> = device
+        .feed(&input)
+        .filter_map(|e| e.ok().map(|f| f.message))
+        .collect();
+    commands.extend(device.flush().filter_map(|e| e.ok().map(|f| f.message)));
+    // On a clean mixed stream each side finds exactly its direction's frames.
+    let want_telemetry: Vec<Telemetry> = packets(&both)
+        .into_iter()
+        .filter_map(|m| match m {
+            Message::Telemetry(t) => Some(t),
+            Message::Command(_) => None,
+        })
+        .collect();
+    let want_commands: Vec<Command> = packets(&both)
+        .into_iter()
+        .filter_map(|m| match m {
+            Message::Command(c) => Some(c),
+            Message::Telemetry(_) => None,
+        })
+        .collect();
+    assert!(!want_telemetry.is_empty() && !want_commands.is_empty());
+    assert_eq!(telemetry, want_telemetry);
+    assert_eq!(commands, want_commands);
+    // Each rejects the other direction's id.
+    let mut device = DEVICE;
+    let rejected = device.feed(&hex(T7)).next().unwrap().unwrap_err();
+    assert_eq!(rejected.error, Error::UnknownId { id: 0x60 });
+    let mut host = HOST;
+    let rejected = host.feed(&hex("a5 50 50")).next().unwrap().unwrap_err();
+    assert_eq!(rejected.error, Error::UnknownId { id: 0x50 });
+    // The defaults.
+    assert_eq!(BOTH.framing().layouts(), Layouts::DOCUMENTED);
+    assert_eq!(HOST.framing().layouts(), Layouts::DOCUMENTED);
+    assert_eq!(DEVICE.framing().layouts(), Layouts::NONE);
+    assert_eq!(Framing::<Both>::default(), Framing::new());
+    assert!(Framing::<Device>::new().accepts_commands());
+    assert!(!Framing::<Host>::new().accepts_commands());
+    assert!(Framing::<Device>::new().accepts_id(0x50));
+    assert!(!Framing::<Device>::new().accepts_id(0x60));
+}
+
+/// The 0.1 names still compile (deprecated) and mean what they meant.
+#[test]
+#[allow(deprecated)]
+fn old_names_still_work() {
+    use robowire::omnitiles::{Decoder, Packet, BUFFER_LEN};
+    assert_eq!(BUFFER_LEN, 128);
+    // The 0.1 commands-only framing: both directions, no layout.
+    let mut decoder: Decoder = Decoder::new(Framing::commands());
+    let events: Vec<_> = decoder.feed(&hex("a5 50 50")).collect();
+    assert_eq!(
+        events[0].as_ref().unwrap().message,
+        Packet::Command(Command::Ping)
+    );
+    assert_eq!(decoder.feed(&hex(T7)).count(), 1, "telemetry is rejected");
+    assert_eq!(decoder.stats().rejected, 1);
+    let mut decoder = Decoder::new(Framing::ANY);
+    let events: Vec<_> = decoder.feed(&hex(T53)).collect();
+    assert!(matches!(
+        events[0].as_ref().unwrap().message,
+        Packet::Telemetry(_)
+    ));
+    let host = Framing::telemetry(Layouts::only(Layout::Pos7));
+    assert_eq!(host.layouts(), Layouts::only(Layout::Pos7));
+    assert_eq!(Framing::any(Layouts::ALL).layouts(), Layouts::ALL);
+    assert_eq!(
+        Command::from_parts(0x30, &[200]),
+        Some(Command::Extend {
+            motor: M1,
+            speed: 200
+        })
+    );
+    assert_eq!(
+        Telemetry::from_frame(&hex(T7)),
+        Telemetry::try_from(&hex(T7)[..]).ok()
+    );
+    assert_eq!(Telemetry::from_frame(&hex("a5 50 50")), None);
 }

@@ -4,8 +4,8 @@
 #[path = "support/corruption.rs"]
 mod corruption;
 
-use corruption::{command_stream, decode, score, telemetry_stream, Corruption};
-use robowire::omnitiles::{Framing, Layout, Layouts};
+use corruption::{command_stream, decode, score, telemetry_stream, Corruption, Stream};
+use robowire::omnitiles::{Both, Device, Framing, Host, Layout, Layouts, Message, Side};
 
 /// Enough frames for a few dozen corrupted ones at 1 % (a few under Miri,
 /// an interpreter, where the byte-at-a-time chunking is left out too).
@@ -16,8 +16,8 @@ const CHUNKS: &[usize] = if cfg!(miri) {
     &[1, 7, 244, 0]
 };
 
-fn ble53_only() -> Framing {
-    Framing::telemetry(Layouts::only(Layout::Ble53))
+fn ble53_only() -> Framing<Host> {
+    Framing::new().with_layouts(Layouts::only(Layout::Ble53))
 }
 
 #[test]
@@ -68,7 +68,10 @@ fn garbage_ending_in_start_byte_before_commands_loses_nothing() {
     let stream = command_stream(0xA5A5, FRAMES, Corruption::GarbageEndingInStart);
     assert!(stream.bytes.len() > stream.sent.iter().map(|s| s.len).sum::<usize>());
     for &chunk in CHUNKS {
-        let s = score(&stream, &decode(Framing::commands(), &stream.bytes, chunk));
+        let s = score(
+            &stream,
+            &decode(Framing::<Device>::new(), &stream.bytes, chunk),
+        );
         assert_eq!(s.lost, 0, "chunk {chunk}: {s:?}");
         assert_eq!(s.intact, FRAMES);
     }
@@ -80,11 +83,7 @@ fn clean_streams_decode_exactly() {
     let telemetry = telemetry_stream(0xC1EA, FRAMES, &[Layout::Ble53], Corruption::Clean);
     let commands = command_stream(0xC1EB, FRAMES, Corruption::Clean);
     let mixed = telemetry_stream(0xC1EC, FRAMES, &documented, Corruption::Clean);
-    for (stream, framing) in [
-        (&telemetry, ble53_only()),
-        (&commands, Framing::commands()),
-        (&mixed, Framing::ANY),
-    ] {
+    fn exact<S: Side<Message: Into<Message>>>(stream: &Stream, framing: Framing<S>) {
         for &chunk in CHUNKS {
             let s = score(stream, &decode(framing, &stream.bytes, chunk));
             assert_eq!(
@@ -94,6 +93,9 @@ fn clean_streams_decode_exactly() {
             );
         }
     }
+    exact(&telemetry, ble53_only());
+    exact(&commands, Framing::<Device>::new());
+    exact(&mixed, Framing::<Both>::new());
 }
 
 /// Found while writing the structured fuzz oracle: with several layouts, a
@@ -103,7 +105,7 @@ fn clean_streams_decode_exactly() {
 /// a single named layout decodes it.
 #[test]
 fn a_frame_that_mimics_a_short_frame_and_a_header() {
-    use robowire::omnitiles::{Packet, Telemetry};
+    use robowire::omnitiles::Telemetry;
     use robowire::FrameBuf;
     let mut t = Telemetry::empty(Layout::Ble53);
     t.m1_pos = Some(0);
@@ -113,16 +115,19 @@ fn a_frame_that_mimics_a_short_frame_and_a_header() {
     assert_eq!(&frame[..9], [0xa5, 0x60, 0, 0, 0, 0, 0x60, 0xa5, 0x60]);
     let input = [&frame[..], &frame[..]].concat();
 
-    let lengths = |framing| -> Vec<(u64, usize)> {
-        decode(framing, &input, 0)
+    fn lengths<S: Side<Message: Into<Message>>>(
+        framing: Framing<S>,
+        input: &[u8],
+    ) -> Vec<(u64, usize)> {
+        decode(framing, input, 0)
             .iter()
             .map(|f| (f.offset, f.len))
             .collect()
-    };
-    assert_eq!(lengths(Framing::ANY), [(0, 7), (53, 7)]);
-    assert_eq!(lengths(ble53_only()), [(0, 53), (53, 53)]);
+    }
+    assert_eq!(lengths(Framing::<Both>::new(), &input), [(0, 7), (53, 7)]);
+    assert_eq!(lengths(ble53_only(), &input), [(0, 53), (53, 53)]);
     assert_eq!(
         decode(ble53_only(), &input, 0)[0].message,
-        Packet::Telemetry(t)
+        Message::Telemetry(t)
     );
 }

@@ -1,11 +1,13 @@
 //! OmniTiles property tests: typed strategies, round trips both ways, and
 //! garbage between frames.
 
+#[path = "support/omnitiles_sides.rs"]
+mod sides;
+
 use proptest::prelude::*;
-use robowire::omnitiles::{
-    checksum, Command, Decoder, Framing, Imu, Layout, Layouts, Motor, Packet, Telemetry,
-};
+use robowire::omnitiles::{checksum, Command, Imu, Layout, Layouts, Message, Motor, Telemetry};
 use robowire::{Encode, FrameBuf};
+use sides::{AnyDecoder, AnyFraming};
 
 fn motor() -> impl Strategy<Value = Motor> {
     prop_oneof![Just(Motor::M1), Just(Motor::M2)]
@@ -67,20 +69,20 @@ fn telemetry() -> impl Strategy<Value = Telemetry> {
     layout().prop_flat_map(telemetry_of)
 }
 
-fn packet() -> impl Strategy<Value = Packet> {
+fn message() -> impl Strategy<Value = Message> {
     prop_oneof![
-        command().prop_map(Packet::Command),
-        telemetry().prop_map(Packet::Telemetry)
+        command().prop_map(Message::Command),
+        telemetry().prop_map(Message::Telemetry)
     ]
 }
 
-fn encode(p: &Packet) -> Vec<u8> {
+fn encode(p: &Message) -> Vec<u8> {
     FrameBuf::<53>::encode(p).unwrap().to_vec()
 }
 
-fn decode_all(framing: Framing, input: &[u8]) -> Vec<Packet> {
-    let mut decoder = Decoder::new(framing);
-    let mut out: Vec<Packet> = decoder
+fn decode_all(framing: AnyFraming, input: &[u8]) -> Vec<Message> {
+    let mut decoder = AnyDecoder::new(framing);
+    let mut out: Vec<Message> = decoder
         .feed(input)
         .filter_map(|e| e.ok().map(|f| f.message))
         .collect();
@@ -89,10 +91,10 @@ fn decode_all(framing: Framing, input: &[u8]) -> Vec<Packet> {
 }
 
 /// A framing that accepts `p` and nothing ambiguous about its length.
-fn exact_framing(p: &Packet) -> Framing {
+fn exact_framing(p: &Message) -> AnyFraming {
     match p {
-        Packet::Command(_) => Framing::commands(),
-        Packet::Telemetry(t) => Framing::any(Layouts::only(t.layout)),
+        Message::Command(_) => sides::commands(),
+        Message::Telemetry(t) => sides::both(Layouts::only(t.layout)),
     }
 }
 
@@ -108,13 +110,14 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(cases()))]
 
     #[test]
-    fn message_to_bytes_to_equal_message(p in packet()) {
+    fn message_to_bytes_to_equal_message(p in message()) {
         let wire = encode(&p);
         prop_assert_eq!(wire.len(), p.encoded_len());
         prop_assert_eq!(decode_all(exact_framing(&p), &wire), vec![p]);
-        if let Packet::Telemetry(t) = p {
-            prop_assert_eq!(Telemetry::from_frame(&wire), Some(t));
+        if let Message::Telemetry(t) = p {
+            prop_assert_eq!(Telemetry::try_from(&wire[..]), Ok(t));
         }
+        prop_assert_eq!(Message::try_from(&wire[..]), Ok(p));
     }
 
     #[test]
@@ -124,7 +127,7 @@ proptest! {
         let mut frame = vec![0xa5, 0x60];
         frame.extend_from_slice(&body[..len - 3]);
         frame.push(checksum(&frame[1..]));
-        let t = Telemetry::from_frame(&frame).expect("valid frame");
+        let t = Telemetry::try_from(&frame[..]).expect("valid frame");
         prop_assert_eq!(&*FrameBuf::<53>::encode(&t).unwrap(), &frame[..]);
     }
 
@@ -134,7 +137,7 @@ proptest! {
             let mut frame = vec![0xa5, id];
             frame.extend_from_slice(&payload[..n]);
             frame.push(checksum(&frame[1..]));
-            let got = decode_all(Framing::commands(), &frame);
+            let got = decode_all(sides::commands(), &frame);
             prop_assert_eq!(got.len(), 1);
             prop_assert_eq!(encode(&got[0]), frame);
         }
@@ -145,28 +148,28 @@ proptest! {
         messages in prop::collection::vec(command(), 0..40),
         chunk in 1usize..64,
     ) {
-        let wire: Vec<u8> = messages.iter().flat_map(|c| encode(&Packet::Command(*c))).collect();
-        let mut decoder = Decoder::new(Framing::commands());
+        let wire: Vec<u8> = messages.iter().flat_map(|c| encode(&Message::Command(*c))).collect();
+        let mut decoder = AnyDecoder::new(sides::commands());
         let mut got = Vec::new();
         for piece in wire.chunks(chunk) {
             got.extend(decoder.feed(piece).map(|e| e.unwrap().message));
         }
         prop_assert_eq!(decoder.flush().count(), 0);
-        let want: Vec<Packet> = messages.into_iter().map(Packet::Command).collect();
+        let want: Vec<Message> = messages.into_iter().map(Message::Command).collect();
         prop_assert_eq!(got, want);
     }
 
     #[test]
     fn mixed_layouts_round_trip(messages in prop::collection::vec(telemetry(), 0..20), chunk in 1usize..80) {
-        let wire: Vec<u8> = messages.iter().flat_map(|t| encode(&Packet::Telemetry(*t))).collect();
-        let mut decoder = Decoder::new(Framing::telemetry(Layouts::ALL));
+        let wire: Vec<u8> = messages.iter().flat_map(|t| encode(&Message::Telemetry(*t))).collect();
+        let mut decoder = AnyDecoder::new(sides::telemetry(Layouts::ALL));
         let mut got = Vec::new();
         for piece in wire.chunks(chunk) {
             got.extend(decoder.feed(piece));
         }
         got.extend(decoder.flush());
-        let got: Vec<Packet> = got.into_iter().map(|e| e.unwrap().message).collect();
-        let want: Vec<Packet> = messages.into_iter().map(Packet::Telemetry).collect();
+        let got: Vec<Message> = got.into_iter().map(|e| e.unwrap().message).collect();
+        let want: Vec<Message> = messages.into_iter().map(Message::Telemetry).collect();
         prop_assert_eq!(got, want);
     }
 
@@ -188,10 +191,10 @@ proptest! {
             let mut t = Telemetry::empty(layout);
             t.m1_pos = Some(seed % 4096);
             t.m2_pos = Some(seed / 16);
-            wire.extend(encode(&Packet::Telemetry(t)));
-            want.push(Packet::Telemetry(t));
+            wire.extend(encode(&Message::Telemetry(t)));
+            want.push(Message::Telemetry(t));
         }
-        let mut decoder = Decoder::new(Framing::telemetry(Layouts::only(layout)));
+        let mut decoder = AnyDecoder::new(sides::telemetry(Layouts::only(layout)));
         let mut got = Vec::new();
         for piece in wire.chunks(chunk) {
             got.extend(decoder.feed(piece).filter_map(|e| e.ok().map(|f| f.message)));
@@ -211,7 +214,7 @@ proptest! {
         chunk in 1usize..70,
     ) {
         let run = |chunk: usize| {
-            let mut decoder = Decoder::new(Framing::any(Layouts::ALL));
+            let mut decoder = AnyDecoder::new(sides::both(Layouts::ALL));
             let mut events = Vec::new();
             for piece in bytes.chunks(chunk) {
                 events.extend(decoder.feed(piece));
@@ -222,5 +225,39 @@ proptest! {
             events
         };
         prop_assert_eq!(run(chunk), run(bytes.len().max(1)));
+    }
+}
+
+#[cfg(feature = "serde")]
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(cases()))]
+
+    /// The JSON form reads back as the same message, bit for bit (NaNs and
+    /// infinities included), and its display is one line.
+    #[test]
+    fn message_to_json_to_equal_message(p in message()) {
+        let json = serde_json::to_string(&p).unwrap();
+        prop_assert_eq!(serde_json::from_str::<Message>(&json).unwrap(), p);
+        let text = p.to_string();
+        prop_assert!(text.starts_with(p.name()) && !text.contains('\n'), "{}", text);
+    }
+
+    /// Any frame with a right checksum that `TryFrom` takes, the decoder
+    /// takes too, as the same message.
+    #[test]
+    fn try_from_agrees_with_the_decoder(bytes in prop::collection::vec(any::<u8>(), 0..60)) {
+        let mut frame = vec![0xa5];
+        frame.extend_from_slice(&bytes);
+        if frame.len() > 2 {
+            let n = frame.len();
+            frame[n - 1] = checksum(&frame[1..n - 1]);
+        }
+        if let Ok(message) = Message::try_from(&frame[..]) {
+            let decoded = decode_all(sides::both(Layouts::only(match message {
+                Message::Telemetry(t) => t.layout,
+                Message::Command(_) => Layout::Pos7,
+            })), &frame);
+            prop_assert_eq!(decoded, vec![message]);
+        }
     }
 }

@@ -4,7 +4,9 @@
 #[path = "../examples/tile_sim/sim.rs"]
 mod sim;
 
-use robowire::omnitiles::{DatagramDecoder, Decoder, Framing, Layout, Layouts, Packet, Telemetry};
+use robowire::omnitiles::{
+    device_decoder, BothDatagramDecoder, Framing, HostDecoder, Layout, Layouts, Telemetry,
+};
 use std::path::Path;
 
 fn data(name: &str) -> Vec<u8> {
@@ -28,25 +30,19 @@ fn captures_regenerate_byte_for_byte() {
     }
 }
 
-fn telemetry(framing: Framing, bytes: &[u8]) -> Vec<Telemetry> {
-    let mut decoder = Decoder::new(framing);
+fn telemetry(layout: Layout, bytes: &[u8]) -> Vec<Telemetry> {
+    let mut decoder = HostDecoder::new(Framing::new().with_layouts(Layouts::only(layout)));
     let mut events: Vec<_> = decoder.feed(bytes).collect();
     events.extend(decoder.flush());
     events
         .into_iter()
-        .filter_map(|event| match event.ok()?.message {
-            Packet::Telemetry(t) => Some(t),
-            Packet::Command(_) => None,
-        })
+        .filter_map(|event| Some(event.ok()?.message))
         .collect()
 }
 
 #[test]
 fn ble_telemetry_is_realistic() {
-    let frames = telemetry(
-        Framing::telemetry(Layouts::only(Layout::Ble53)),
-        &data("ble_telemetry.bin"),
-    );
+    let frames = telemetry(Layout::Ble53, &data("ble_telemetry.bin"));
     // 300 notifications; the line noise corrupts a couple of them.
     assert_eq!(frames.len(), 298);
     let mut no_tof = 0;
@@ -91,20 +87,17 @@ fn ble_telemetry_is_realistic() {
 
 #[test]
 fn other_captures_decode() {
-    let spi = telemetry(
-        Framing::telemetry(Layouts::only(Layout::Spi45)),
-        &data("spi_telemetry.bin"),
-    );
+    let spi = telemetry(Layout::Spi45, &data("spi_telemetry.bin"));
     assert_eq!(spi.len(), 64);
     assert!(spi.iter().all(|t| t.uwb.is_none() && t.imu.is_some()));
 
-    let mut commands = Decoder::new(Framing::commands());
+    let mut commands = device_decoder();
     let bytes = data("host_commands.bin");
     let count = commands.feed(&bytes).filter(Result::is_ok).count()
         + commands.flush().filter(Result::is_ok).count();
     assert!((230..=240).contains(&count), "{count} commands");
 
-    let mut datagrams = DatagramDecoder::new(Framing::ANY);
+    let mut datagrams = BothDatagramDecoder::new(Framing::new());
     let text = String::from_utf8(data("ble_notifications.hex")).unwrap();
     let mut frames = 0;
     for line in text.lines() {

@@ -5,15 +5,18 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use robowire::omnitiles::{DatagramDecoder, Decoder, Packet};
-use robowire::FrameBuf;
-use robowire_fuzz::omnitiles_framing;
+use robowire::omnitiles::{DatagramDecoder, Framing, Message, Side, BOTH_BUFFER};
+use robowire::{FrameBuf, StreamDecoder};
+use robowire_fuzz::{omnitiles_framing, with_omnitiles_framing};
 
 fuzz_target!(|data: &[u8]| {
-    let Some((&selector, mut rest)) = data.split_first() else {
+    let Some((&selector, rest)) = data.split_first() else {
         return;
     };
-    let framing = omnitiles_framing(selector);
+    with_omnitiles_framing!(omnitiles_framing(selector), |framing| run(framing, rest));
+});
+
+fn run<S: Side>(framing: Framing<S>, mut rest: &[u8]) {
     let mut datagrams = DatagramDecoder::new(framing);
     let mut base = 0u64;
     while let Some((&len, tail)) = rest.split_first() {
@@ -28,7 +31,7 @@ fuzz_target!(|data: &[u8]| {
                     let at = (frame.offset - base) as usize;
                     assert!(at + frame.len <= datagram.len(), "inside the datagram");
                     let raw = &datagram[at..at + frame.len];
-                    let encoded = FrameBuf::<{ Packet::MAX_LEN }>::encode(&frame.message)
+                    let encoded = FrameBuf::<{ Message::MAX_LEN }>::encode(&frame.message)
                         .expect("decoded messages encode");
                     assert_eq!(&*encoded, raw, "re-encodes to its bytes");
                     next = frame.offset + frame.len as u64;
@@ -41,7 +44,7 @@ fuzz_target!(|data: &[u8]| {
             }
         }
         if !datagram.starts_with(&[0xa5, 0x60]) {
-            let mut stream = Decoder::new(framing);
+            let mut stream = StreamDecoder::<_, BOTH_BUFFER>::new(framing);
             let mut want: Vec<_> = stream.feed(datagram).collect();
             want.extend(stream.flush());
             let got: Vec<_> = events
@@ -64,4 +67,4 @@ fuzz_target!(|data: &[u8]| {
         assert_eq!(s.bytes, base);
         assert_eq!(s.bytes, s.frame_bytes + s.skipped, "counters add up: {s:?}");
     }
-});
+}

@@ -5,13 +5,19 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use robowire::omnitiles::Decoder;
-use robowire_fuzz::{check_stream, omnitiles_framing, split_input};
+use robowire::omnitiles::BOTH_BUFFER;
+use robowire::StreamDecoder;
+use robowire_fuzz::{check_stream, omnitiles_framing, split_input, with_omnitiles_framing};
 
 fuzz_target!(|data: &[u8]| {
     let Some((selector, sizes, stream)) = split_input(data) else {
         return;
     };
-    let framing = omnitiles_framing(selector);
-    check_stream(|| Decoder::new(framing), stream, sizes);
+    with_omnitiles_framing!(omnitiles_framing(selector), |framing| {
+        check_stream(
+            || StreamDecoder::<_, BOTH_BUFFER>::new(framing),
+            stream,
+            sizes,
+        );
+    });
 });

@@ -7,23 +7,24 @@
 
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
+use robowire::omnitiles::{Both, Host};
 use robowire::omnitiles::{
-    Command, DatagramDecoder, Decoder, Framing, Imu, Layout, Layouts, Motor, Packet, Telemetry,
-    NO_READING,
+    Command, DatagramDecoder, Framing, Imu, Layout, Layouts, Message, Motor, Side, Telemetry,
+    BOTH_BUFFER, NO_READING,
 };
-use robowire::{Encode, FrameBuf, OwnedFrame};
-use robowire_fuzz::decode_chunked;
+use robowire::{Encode, FrameBuf, OwnedFrame, StreamDecoder};
+use robowire_fuzz::{decode_chunked, Run};
 
 #[derive(Arbitrary, Debug)]
 struct Input {
     commands: bool,
     layouts: u8,
     chunk: u8,
-    messages: Vec<Message>,
+    messages: Vec<Spec>,
 }
 
 #[derive(Arbitrary, Debug)]
-enum Message {
+enum Spec {
     Ping,
     Extend(bool, u8),
     Retract(bool, u8),
@@ -52,28 +53,28 @@ fn reading(v: u16) -> Option<u16> {
 }
 
 /// The typed message, or `None` for telemetry when no layout is enabled.
-fn build(message: &Message, layouts: &[Layout]) -> Option<Packet> {
+fn build(message: &Spec, layouts: &[Layout]) -> Option<Message> {
     Some(match *message {
-        Message::Ping => Command::Ping.into(),
-        Message::Extend(m, speed) => Command::Extend {
+        Spec::Ping => Command::Ping.into(),
+        Spec::Extend(m, speed) => Command::Extend {
             motor: motor(m),
             speed,
         }
         .into(),
-        Message::Retract(m, speed) => Command::Retract {
+        Spec::Retract(m, speed) => Command::Retract {
             motor: motor(m),
             speed,
         }
         .into(),
-        Message::Brake(m) => Command::Brake { motor: motor(m) }.into(),
-        Message::SetPosition(m, position) => Command::SetPosition {
+        Spec::Brake(m) => Command::Brake { motor: motor(m) }.into(),
+        Spec::SetPosition(m, position) => Command::SetPosition {
             motor: motor(m),
             position,
         }
         .into(),
-        Message::BaseVelocity(vx, vy, omega) => Command::BaseVelocity { vx, vy, omega }.into(),
-        Message::BaseBrake => Command::BaseBrake.into(),
-        Message::Telemetry {
+        Spec::BaseVelocity(vx, vy, omega) => Command::BaseVelocity { vx, vy, omega }.into(),
+        Spec::BaseBrake => Command::BaseBrake.into(),
+        Spec::Telemetry {
             layout,
             readings: r,
             imu,
@@ -110,36 +111,77 @@ fuzz_target!(|input: Input| {
         .map(|(_, l)| l)
         .collect();
     let commands = input.commands || enabled.is_empty();
-    let framing = if commands {
-        Framing::any(enabled)
-    } else {
-        Framing::telemetry(enabled)
-    };
     let kinds: Vec<Layout> = enabled.iter().collect();
-    let messages: Vec<Packet> = input
+    let messages: Vec<Message> = input
         .messages
         .iter()
         .filter_map(|m| build(m, &kinds))
-        .filter(|p| commands || matches!(p, Packet::Telemetry(_)))
+        .filter(|p| commands || matches!(p, Message::Telemetry(_)))
         .collect();
+    // Commands and no layout is as the device's side; with `Both` it is
+    // the same framing.
+    if commands {
+        run(
+            Framing::<Both>::new().with_layouts(enabled),
+            &input,
+            &messages,
+        );
+    } else {
+        run(
+            Framing::<Host>::new().with_layouts(enabled),
+            &input,
+            &messages,
+        );
+    }
+});
+
+/// Events with the message of either direction.
+fn widen<S: Side>(
+    run: Run<S::Message, robowire::omnitiles::Error>,
+) -> Run<Message, robowire::omnitiles::Error> {
+    Run {
+        events: run
+            .events
+            .into_iter()
+            .map(|e| {
+                e.map(|f| OwnedFrame {
+                    offset: f.offset,
+                    len: f.len,
+                    message: f.message.into(),
+                })
+            })
+            .collect(),
+        stats: run.stats,
+    }
+}
+
+fn run<S: Side>(framing: Framing<S>, input: &Input, messages: &[Message]) {
+    let enabled = framing.layouts();
 
     let mut stream = Vec::new();
     let mut want = Vec::new();
     let mut interior_start = false;
-    for message in &messages {
+    for message in messages {
         let frame =
-            FrameBuf::<{ Packet::MAX_LEN }>::encode(message).expect("valid messages encode");
+            FrameBuf::<{ Message::MAX_LEN }>::encode(message).expect("valid messages encode");
         assert_eq!(frame.len(), message.encoded_len());
         // Alone: the typed parsers and the datagram decoder give it back.
+        assert_eq!(Message::try_from(&frame[..]), Ok(*message));
         match message {
-            Packet::Telemetry(t) => assert_eq!(Telemetry::from_frame(&frame), Some(*t)),
-            Packet::Command(c) => assert_eq!(
-                Command::from_parts(frame[1], &frame[2..frame.len() - 1]),
-                Some(*c)
-            ),
+            Message::Telemetry(t) => assert_eq!(Telemetry::try_from(&frame[..]), Ok(*t)),
+            Message::Command(c) => assert_eq!(Command::try_from(&frame[..]), Ok(*c)),
         }
         let mut datagrams = DatagramDecoder::new(framing);
-        let alone: Vec<_> = datagrams.decode(&frame).collect();
+        let alone: Vec<_> = datagrams
+            .decode(&frame)
+            .map(|e| {
+                e.map(|f| OwnedFrame {
+                    offset: f.offset,
+                    len: f.len,
+                    message: f.message.into(),
+                })
+            })
+            .collect();
         let one = OwnedFrame {
             offset: 0,
             len: frame.len(),
@@ -155,15 +197,19 @@ fuzz_target!(|input: Input| {
         stream.extend_from_slice(&frame);
     }
 
-    let whole = decode_chunked(Decoder::new(framing), &stream, &[stream.len().max(1)]);
-    let chunked = decode_chunked(
-        Decoder::new(framing),
+    let whole = widen::<S>(decode_chunked(
+        StreamDecoder::<_, BOTH_BUFFER>::new(framing),
+        &stream,
+        &[stream.len().max(1)],
+    ));
+    let chunked = widen::<S>(decode_chunked(
+        StreamDecoder::<_, BOTH_BUFFER>::new(framing),
         &stream,
         &[usize::from(input.chunk).max(1)],
-    );
+    ));
     assert_eq!(whole, chunked, "chunk {}", input.chunk);
     if enabled.len() <= 1 || !interior_start {
         assert_eq!(whole.events, want, "clean stream gives back every message");
         assert_eq!(whole.stats.skipped, 0);
     }
-});
+}

@@ -11,23 +11,48 @@
 
 use std::fmt::Debug;
 
-use robowire::omnitiles::{Layout, Layouts};
+use robowire::omnitiles::{Both, Device, Framing, Host, Layout, Layouts};
 use robowire::stream::{owned_event, FrameRules, OwnedEvent, StreamDecoder};
 
+/// An OmniTiles framing of any side, as [`omnitiles_framing`] picks it.
+#[derive(Debug, Clone, Copy)]
+pub enum OmniTilesFraming {
+    /// Telemetry in a set of layouts (possibly none).
+    Host(Framing<Host>),
+    /// Commands.
+    Device(Framing<Device>),
+    /// Commands and telemetry in a non-empty set of layouts.
+    Both(Framing<Both>),
+}
+
 /// An OmniTiles framing chosen by one fuzz byte: bit 0 accepts commands, bits
-/// 1..=5 pick the telemetry layouts (in `Layout::ALL` order).
-pub fn omnitiles_framing(selector: u8) -> robowire::omnitiles::Framing {
+/// 1..=5 pick the telemetry layouts (in `Layout::ALL` order). Commands and no
+/// layout is the device's side.
+pub fn omnitiles_framing(selector: u8) -> OmniTilesFraming {
     let layouts: Layouts = Layout::ALL
         .into_iter()
         .enumerate()
         .filter(|(i, _)| selector >> (i + 1) & 1 == 1)
         .map(|(_, l)| l)
         .collect();
-    if selector & 1 == 1 {
-        robowire::omnitiles::Framing::any(layouts)
-    } else {
-        robowire::omnitiles::Framing::telemetry(layouts)
+    match (selector & 1 == 1, layouts.is_empty()) {
+        (true, true) => OmniTilesFraming::Device(Framing::new()),
+        (true, false) => OmniTilesFraming::Both(Framing::new().with_layouts(layouts)),
+        (false, _) => OmniTilesFraming::Host(Framing::new().with_layouts(layouts)),
     }
+}
+
+/// `$body` with `$f` bound to the framing of whichever side
+/// `$framing` ([`OmniTilesFraming`]) holds.
+#[macro_export]
+macro_rules! with_omnitiles_framing {
+    ($framing:expr, |$f:ident| $body:expr) => {
+        match $framing {
+            $crate::OmniTilesFraming::Host($f) => $body,
+            $crate::OmniTilesFraming::Device($f) => $body,
+            $crate::OmniTilesFraming::Both($f) => $body,
+        }
+    };
 }
 
 /// Split a fuzz input into a selector byte, chunk sizes and the stream: byte 0
@@ -205,7 +230,9 @@ fn check_event<O: Debug, E: Debug>(
 
 /// Events move forward: after a frame the next event starts past it, after a
 /// rejection past its first byte.
-fn check_order<O: Debug, E: Debug>(events: &[Result<robowire::OwnedFrame<O>, robowire::Rejected<E>>]) {
+fn check_order<O: Debug, E: Debug>(
+    events: &[Result<robowire::OwnedFrame<O>, robowire::Rejected<E>>],
+) {
     let mut next = 0u64;
     for event in events {
         let (offset, len) = match event {

@@ -11,18 +11,18 @@
 //!
 //! ```
 //! use robowire::io::embedded_io::{PacketReader, PacketWriter};
-//! use robowire::omnitiles::{Command, Decoder, Framing, Layout, Motor, Packet, Telemetry};
+//! use robowire::omnitiles::{device_decoder, Command, Layout, Motor, Telemetry};
 //!
 //! // Noise, then M1 extend at 200, then a ping.
 //! let uart_rx: &[u8] = &[0x00, 0xa5, 0xa5, 0x30, 0xc8, 0xf8, 0xa5, 0x50, 0x50];
 //! let mut buf = [0u8; 16];
-//! let mut rx = PacketReader::new(uart_rx, Decoder::new(Framing::commands()), &mut buf[..]);
+//! let mut rx = PacketReader::new(uart_rx, device_decoder(), &mut buf[..]);
 //! let mut uart_tx = [0u8; 128];
 //! let mut tx = PacketWriter::<_, { Telemetry::MAX_LEN }>::new(&mut uart_tx[..]);
 //!
 //! let mut commands = 0;
 //! while let Some(frame) = rx.read_message()? {
-//!     if let Packet::Command(Command::Extend { motor: Motor::M1, speed }) = frame.message {
+//!     if let Command::Extend { motor: Motor::M1, speed } = frame.message {
 //!         assert_eq!(speed, 200);
 //!     }
 //!     commands += 1;

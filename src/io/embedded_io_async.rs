@@ -7,7 +7,7 @@
 //!
 //! ```
 //! use robowire::io::embedded_io_async::{PacketReader, PacketWriter};
-//! use robowire::omnitiles::{Command, Decoder, Framing, Packet};
+//! use robowire::omnitiles::{device_decoder, Command};
 //!
 //! async fn serve<R, W>(uart_rx: R, uart_tx: W) -> Result<u64, robowire::io::WriteError<W::Error>>
 //! where
@@ -15,13 +15,11 @@
 //!     W: embedded_io_async::Write,
 //! {
 //!     let mut buf = [0u8; 32];
-//!     let mut rx = PacketReader::new(uart_rx, Decoder::new(Framing::commands()), &mut buf[..]);
+//!     let mut rx = PacketReader::new(uart_rx, device_decoder(), &mut buf[..]);
 //!     let mut tx = PacketWriter::<_, { Command::MAX_LEN }>::new(uart_tx);
 //!     // Echo every command back; stop at the end of the input or on a read error.
 //!     while let Ok(Some(frame)) = rx.read_message().await {
-//!         if let Packet::Command(command) = frame.message {
-//!             tx.send(&command).await?;
-//!         }
+//!         tx.send(&frame.message).await?;
 //!     }
 //!     Ok(rx.stats().frames)
 //! }

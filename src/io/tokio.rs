@@ -23,20 +23,21 @@
 //! never an error. The codec then takes a new stream, should the source
 //! produce more bytes after its end.
 //!
-//! Every protocol has aliases: [`OmniTilesCodec`], [`Pixy2HostCodec`] and
+//! Every protocol has aliases: [`OmniTilesHostCodec`], [`OmniTilesDeviceCodec`]
+//! and [`OmniTilesCodec`] (both directions), [`Pixy2HostCodec`] and
 //! [`Pixy2DeviceCodec`], [`TelemetrixHostCodec`] and [`TelemetrixPicoCodec`].
 //!
 //! ```
 //! use futures_util::{SinkExt, StreamExt};
-//! use robowire::io::tokio::OmniTilesCodec;
-//! use robowire::omnitiles::{Command, Framing, Motor, Packet};
+//! use robowire::io::tokio::{OmniTilesDeviceCodec, OmniTilesHostCodec};
+//! use robowire::omnitiles::{Command, Motor};
 //! use tokio_util::codec::{FramedRead, FramedWrite};
 //!
 //! # #[tokio::main(flavor = "current_thread")]
 //! # async fn main() -> std::io::Result<()> {
 //! let (host, tile) = tokio::io::duplex(64);
-//! let mut to_tile = FramedWrite::new(host, OmniTilesCodec::default());
-//! let mut at_tile = FramedRead::new(tile, OmniTilesCodec::new(Framing::commands()));
+//! let mut to_tile = FramedWrite::new(host, OmniTilesHostCodec::default());
+//! let mut at_tile = FramedRead::new(tile, OmniTilesDeviceCodec::default());
 //!
 //! to_tile.send(Command::Extend { motor: Motor::M1, speed: 200 }).await?;
 //! to_tile.send(Command::Ping).await?;
@@ -46,10 +47,7 @@
 //! while let Some(frame) = at_tile.next().await {
 //!     received.push(frame?.message);
 //! }
-//! assert_eq!(received, [
-//!     Packet::Command(Command::Extend { motor: Motor::M1, speed: 200 }),
-//!     Packet::Command(Command::Ping),
-//! ]);
+//! assert_eq!(received, [Command::Extend { motor: Motor::M1, speed: 200 }, Command::Ping]);
 //! # Ok(())
 //! # }
 //! ```
@@ -66,11 +64,31 @@ use crate::stream::{
     owned_event, FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats, StreamDecoder,
 };
 
-/// The OmniTiles codec: `FramedRead::new(port, OmniTilesCodec::default())`
-/// yields [`OwnedFrame<Packet>`](crate::omnitiles::Packet) and accepts commands and
-/// telemetry in the documented layouts ([`Framing::ANY`](crate::omnitiles::Framing::ANY)).
-pub type OmniTilesCodec<Y = Messages> =
-    FrameCodec<crate::omnitiles::Framing, { crate::omnitiles::BUFFER_LEN }, Y>;
+/// The OmniTiles host-side codec: yields telemetry
+/// ([`OwnedFrame<Telemetry>`](crate::omnitiles::Telemetry)) in the documented
+/// layouts by default, and encodes commands.
+pub type OmniTilesHostCodec<Y = Messages> = FrameCodec<
+    crate::omnitiles::Framing<crate::omnitiles::Host>,
+    { crate::omnitiles::HOST_BUFFER },
+    Y,
+>;
+
+/// The OmniTiles tile-side codec (a simulated tile): yields commands
+/// ([`OwnedFrame<Command>`](crate::omnitiles::Command)) and encodes telemetry.
+pub type OmniTilesDeviceCodec<Y = Messages> = FrameCodec<
+    crate::omnitiles::Framing<crate::omnitiles::Device>,
+    { crate::omnitiles::DEVICE_BUFFER },
+    Y,
+>;
+
+/// The OmniTiles codec for both directions: `FramedRead::new(port,
+/// OmniTilesCodec::default())` yields [`OwnedFrame<Message>`](crate::omnitiles::Message),
+/// commands and telemetry in the documented layouts.
+pub type OmniTilesCodec<Y = Messages> = FrameCodec<
+    crate::omnitiles::Framing<crate::omnitiles::Both>,
+    { crate::omnitiles::BOTH_BUFFER },
+    Y,
+>;
 
 /// The Pixy2 host-side codec: yields responses
 /// ([`Envelope<ResponseBuf>`](crate::pixy2::Envelope)) and encodes requests.
@@ -162,11 +180,10 @@ impl<F: FrameRules, const N: usize, Y> FrameCodec<F, N, Y> {
     /// The same codec, yielding every event (frames and rejections).
     ///
     /// ```
-    /// use robowire::io::tokio::OmniTilesCodec;
-    /// use robowire::omnitiles::Framing;
+    /// use robowire::io::tokio::OmniTilesDeviceCodec;
     /// use tokio_util::codec::Decoder;
     ///
-    /// let mut codec = OmniTilesCodec::new(Framing::commands()).events();
+    /// let mut codec = OmniTilesDeviceCodec::default().events();
     /// // A ping with a bad checksum, then a good one.
     /// let mut bytes = bytes::BytesMut::from(&[0xa5, 0x50, 0x51, 0xa5, 0x50, 0x50][..]);
     /// assert!(codec.decode(&mut bytes)?.unwrap().is_err());

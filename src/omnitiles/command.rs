@@ -1,10 +1,25 @@
 //! Commands: host → tile.
 
-use super::{checksum, START};
+use core::fmt;
+use core::str::FromStr;
+
+use super::error::{Error, UnknownName};
+use super::whole::{check_whole, start_and_id};
+use super::wire::{checksum, id, payload_len, MAX_COMMAND_LEN, START};
 use crate::encode::{check_room, Encode, EncodeError};
 
 /// One of the tile's two linear actuators.
+///
+/// Its name (`Display`, `FromStr`, and the `serde` form) is `m1` or `m2`, as
+/// in the command names (`m1_extend`, …).
+///
+/// ```
+/// use robowire::omnitiles::Motor;
+/// assert_eq!("m2".parse(), Ok(Motor::M2));
+/// assert_eq!(Motor::M1.to_string(), "m1");
+/// ```
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "lowercase"))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Motor {
@@ -14,32 +29,34 @@ pub enum Motor {
     M2,
 }
 
-/// Message ids (spec §3).
-pub mod id {
-    /// M1 extend, u8 speed.
-    pub const M1_EXTEND: u8 = 0x30;
-    /// M1 retract, u8 speed.
-    pub const M1_RETRACT: u8 = 0x31;
-    /// M1 brake.
-    pub const M1_BRAKE: u8 = 0x32;
-    /// M1 set position, u8 scaled over the stroke.
-    pub const M1_SET_POSITION: u8 = 0x33;
-    /// M2 extend, u8 speed.
-    pub const M2_EXTEND: u8 = 0x40;
-    /// M2 retract, u8 speed.
-    pub const M2_RETRACT: u8 = 0x41;
-    /// M2 brake.
-    pub const M2_BRAKE: u8 = 0x42;
-    /// M2 set position, u8 scaled over the stroke.
-    pub const M2_SET_POSITION: u8 = 0x43;
-    /// Ping (no reply).
-    pub const PING: u8 = 0x50;
-    /// Telemetry, tile → host only.
-    pub const TELEMETRY: u8 = 0x60;
-    /// Mecanum base velocity, three i8.
-    pub const BASE_VELOCITY: u8 = 0x70;
-    /// Brake all four wheels.
-    pub const BASE_BRAKE: u8 = 0x71;
+impl Motor {
+    /// Both motors.
+    pub const ALL: [Motor; 2] = [Motor::M1, Motor::M2];
+
+    /// The motor's name: `m1` or `m2`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Motor::M1 => "m1",
+            Motor::M2 => "m2",
+        }
+    }
+}
+
+impl fmt::Display for Motor {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Motor {
+    type Err = UnknownName;
+
+    fn from_str(name: &str) -> Result<Motor, UnknownName> {
+        Motor::ALL
+            .into_iter()
+            .find(|m| m.name() == name)
+            .ok_or(UnknownName::new("motor", "m1 or m2"))
+    }
 }
 
 /// A command from the host to a tile.
@@ -50,8 +67,15 @@ pub mod id {
 /// let mut out = [0u8; Command::MAX_LEN];
 /// let n = Command::Extend { motor: Motor::M1, speed: 200 }.encode(&mut out).unwrap();
 /// assert_eq!(&out[..n], [0xa5, 0x30, 0xc8, 0xf8]);
+/// // And back from the whole frame:
+/// assert_eq!(Command::try_from(&out[..n]), Ok(Command::Extend { motor: Motor::M1, speed: 200 }));
+/// assert_eq!(Command::Extend { motor: Motor::M1, speed: 200 }.to_string(), "m1_extend speed=200");
 /// ```
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+///
+/// With the `serde` feature a command is written as the command-line tool's
+/// JSON line for it, without `offset` and `len`:
+/// `{"type":"m1_extend","speed":200}`. Deserializing checks every field as
+/// the tool does (the type, unknown fields, ranges), with its messages.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Command {
@@ -98,46 +122,25 @@ pub enum Command {
     BaseBrake,
 }
 
-/// Payload length of a command id, or `None` if the id is no command.
-#[inline]
-pub const fn payload_len(id: u8) -> Option<usize> {
-    // One table load instead of a chain of comparisons on the hot path.
-    match PAYLOAD_LEN[id as usize] {
-        NOT_A_COMMAND => None,
-        n => Some(n as usize),
-    }
-}
-
-/// [`PAYLOAD_LEN`] entry of an id that is no command.
-const NOT_A_COMMAND: u8 = u8::MAX;
-
-/// Payload length by id, [`NOT_A_COMMAND`] for ids that are no command.
-const PAYLOAD_LEN: [u8; 256] = {
-    let mut table = [NOT_A_COMMAND; 256];
-    let mut id = 0;
-    while id < 256 {
-        if let Some(n) = command_payload_len(id as u8) {
-            table[id] = n as u8;
-        }
-        id += 1;
-    }
-    table
-};
-
-/// The command table (spec §3) that [`PAYLOAD_LEN`] is built from.
-const fn command_payload_len(id: u8) -> Option<usize> {
-    match id {
-        id::M1_EXTEND | id::M1_RETRACT | id::M1_SET_POSITION => Some(1),
-        id::M2_EXTEND | id::M2_RETRACT | id::M2_SET_POSITION => Some(1),
-        id::M1_BRAKE | id::M2_BRAKE | id::PING | id::BASE_BRAKE => Some(0),
-        id::BASE_VELOCITY => Some(3),
-        _ => None,
-    }
-}
-
 impl Command {
     /// The longest command frame (base velocity).
-    pub const MAX_LEN: usize = 6;
+    pub const MAX_LEN: usize = MAX_COMMAND_LEN;
+
+    /// Every command's [`name`](Self::name), in the order of the spec's id
+    /// table with ping first: the `type` values of the JSON form.
+    pub const NAMES: [&'static str; 11] = [
+        "ping",
+        "m1_extend",
+        "m1_retract",
+        "m1_brake",
+        "m1_set_position",
+        "m2_extend",
+        "m2_retract",
+        "m2_brake",
+        "m2_set_position",
+        "base_velocity",
+        "base_brake",
+    ];
 
     /// The command's message id.
     pub const fn id(&self) -> u8 {
@@ -154,7 +157,8 @@ impl Command {
         }
     }
 
-    /// The snake-case name used by the command-line tool (`m1_extend`, `ping`, …).
+    /// The snake-case name used by the command-line tool and the JSON form
+    /// (`m1_extend`, `ping`, …; one of [`NAMES`](Self::NAMES)).
     pub const fn name(&self) -> &'static str {
         match *self {
             Command::Ping => "ping",
@@ -171,7 +175,18 @@ impl Command {
 
     /// The command with message id `id` and `payload`, if the id is a command
     /// and the payload has its length.
+    #[deprecated(
+        since = "0.2.0",
+        note = "parse the whole frame with `Command::try_from(frame)`"
+    )]
     pub const fn from_parts(id: u8, payload: &[u8]) -> Option<Command> {
+        Command::from_id_and_payload(id, payload)
+    }
+
+    /// The command with message id `id` and `payload`, if the id is a command
+    /// and the payload has its length.
+    #[inline]
+    pub(crate) const fn from_id_and_payload(id: u8, payload: &[u8]) -> Option<Command> {
         let motor = if id >> 4 == 3 { Motor::M1 } else { Motor::M2 };
         Some(match (id, payload) {
             (id::PING, []) => Command::Ping,
@@ -189,6 +204,17 @@ impl Command {
             (id::BASE_BRAKE, []) => Command::BaseBrake,
             _ => return None,
         })
+    }
+
+    /// A frame that passed framing (start byte, command id, length and
+    /// checksum already checked) as a command.
+    #[inline(always)]
+    pub(crate) fn parse_framed(frame: &[u8]) -> Result<Command, Error> {
+        let id = frame.get(1).copied().unwrap_or(0);
+        frame
+            .get(2..frame.len().saturating_sub(1))
+            .and_then(|payload| Command::from_id_and_payload(id, payload))
+            .ok_or(Error::UnknownId { id })
     }
 
     /// Write the payload (after the id) into `out`; returns its length.
@@ -222,6 +248,47 @@ const fn pick_name(motor: Motor, m1: &'static str, m2: &'static str) -> &'static
     match motor {
         Motor::M1 => m1,
         Motor::M2 => m2,
+    }
+}
+
+/// One whole command frame, start byte to checksum: nothing before it and
+/// nothing after it.
+///
+/// ```
+/// use robowire::omnitiles::{Command, Error};
+/// assert_eq!(Command::try_from(&[0xa5, 0x50, 0x50][..]), Ok(Command::Ping));
+/// assert_eq!(
+///     Command::try_from(&[0xa5, 0x50, 0x51][..]),
+///     Err(Error::Checksum { expected: 0x50, found: 0x51 })
+/// );
+/// assert_eq!(Command::try_from(&[0xa5, 0x50, 0x50, 0x00][..]), Err(Error::BadLength { len: 4 }));
+/// ```
+impl TryFrom<&[u8]> for Command {
+    type Error = Error;
+
+    fn try_from(frame: &[u8]) -> Result<Command, Error> {
+        let id = start_and_id(frame)?;
+        let n = payload_len(id).ok_or(Error::UnknownId { id })?;
+        check_whole(frame, 3 + n)?;
+        Command::parse_framed(frame)
+    }
+}
+
+/// One line with the JSON form's words: the name, then `field=value` pairs
+/// (`m1_extend speed=200`, `base_velocity vx=10 vy=-5 omega=20`, `ping`).
+impl fmt::Display for Command {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())?;
+        match *self {
+            Command::Extend { speed, .. } | Command::Retract { speed, .. } => {
+                write!(f, " speed={speed}")
+            }
+            Command::SetPosition { position, .. } => write!(f, " position={position}"),
+            Command::BaseVelocity { vx, vy, omega } => {
+                write!(f, " vx={vx} vy={vy} omega={omega}")
+            }
+            Command::Ping | Command::Brake { .. } | Command::BaseBrake => Ok(()),
+        }
     }
 }
 

@@ -1,10 +1,10 @@
 //! Decoding datagrams: byte runs whose boundaries the transport already knows
 //! (one BLE notification, one 128-byte SPI buffer, one BLE write).
 
-use super::framing::{parse_frame, Framing};
+use super::framing::{Both, Device, Framing, Host, Side};
 use super::layout::Layout;
-use super::{checksum, id, Decoder, Packet, START};
-use crate::stream::{owned_event, OwnedEvent, OwnedFrame, Stats};
+use super::wire::{checksum, id, START};
+use crate::stream::{owned_event, OwnedEvent, OwnedFrame, Stats, StreamDecoder};
 
 /// Decodes one datagram at a time. Because the datagram's length is known, a
 /// telemetry layout is picked by it: a datagram that starts `a5 60` is one
@@ -19,30 +19,35 @@ use crate::stream::{owned_event, OwnedEvent, OwnedFrame, Stats};
 /// datagrams were concatenated.
 ///
 /// ```
-/// use robowire::omnitiles::{Command, DatagramDecoder, Framing, Motor, Packet};
+/// use robowire::omnitiles::{Command, DeviceDatagramDecoder, Framing, Motor};
 /// let mut brake_buffer = [0u8; 128];
 /// brake_buffer[..6].copy_from_slice(&[0xa5, 0x32, 0x32, 0xa5, 0x42, 0x42]);
-/// let mut datagrams = DatagramDecoder::new(Framing::commands());
-/// let packets: Vec<Packet> = datagrams
-///     .decode(&brake_buffer)
-///     .map(|event| event.unwrap().message)
-///     .collect();
-/// assert_eq!(packets, [
-///     Packet::Command(Command::Brake { motor: Motor::M1 }),
-///     Packet::Command(Command::Brake { motor: Motor::M2 }),
+/// // The tile's side: commands only.
+/// let mut datagrams = DeviceDatagramDecoder::new(Framing::new());
+/// let mut commands = Vec::new();
+/// for event in datagrams.decode(&brake_buffer) {
+///     commands.push(event.unwrap().message);
+/// }
+/// assert_eq!(commands, [
+///     Command::Brake { motor: Motor::M1 },
+///     Command::Brake { motor: Motor::M2 },
 /// ]);
 /// ```
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone)]
-pub struct DatagramDecoder {
-    framing: Framing,
+pub struct DatagramDecoder<S> {
+    framing: Framing<S>,
     offset: u64,
     stats: Stats,
 }
 
-impl DatagramDecoder {
+/// The stream decoder a datagram that is not one whole telemetry frame goes
+/// through.
+type Engine<S> = StreamDecoder<Framing<S>, { super::BOTH_BUFFER }>;
+
+impl<S: Side> DatagramDecoder<S> {
     /// A datagram decoder accepting what `framing` accepts.
-    pub const fn new(framing: Framing) -> Self {
+    pub const fn new(framing: Framing<S>) -> Self {
         Self {
             framing,
             offset: 0,
@@ -56,12 +61,12 @@ impl DatagramDecoder {
     }
 
     /// The events in one datagram, in order.
-    pub fn decode<'d, 'a>(&'d mut self, datagram: &'a [u8]) -> Datagram<'d, 'a> {
+    pub fn decode<'d, 'a>(&'d mut self, datagram: &'a [u8]) -> Datagram<'d, 'a, S> {
         let base = self.offset;
         self.offset += datagram.len() as u64;
         let whole = self.whole_telemetry(datagram);
         Datagram {
-            engine: Decoder::new(self.framing),
+            engine: Engine::new(self.framing),
             owner: self,
             rest: if whole.is_some() { &[] } else { datagram },
             whole,
@@ -91,10 +96,10 @@ impl DatagramDecoder {
         })
     }
 
-    fn whole_telemetry(&mut self, datagram: &[u8]) -> Option<OwnedFrame<Packet>> {
+    fn whole_telemetry(&mut self, datagram: &[u8]) -> Option<OwnedFrame<S::Message>> {
         let layout = self.telemetry_layout(datagram)?;
         let len = layout.frame_len();
-        let message = parse_frame(&datagram[..len]).ok()?;
+        let message = S::parse(&datagram[..len]).ok()?;
         self.stats.bytes += datagram.len() as u64;
         self.stats.frames += 1;
         self.stats.frame_bytes += len as u64;
@@ -107,19 +112,26 @@ impl DatagramDecoder {
     }
 }
 
+/// A datagram decoder on the host's side: telemetry.
+pub type HostDatagramDecoder = DatagramDecoder<Host>;
+/// A datagram decoder on the device's side: commands.
+pub type DeviceDatagramDecoder = DatagramDecoder<Device>;
+/// A datagram decoder for both directions.
+pub type BothDatagramDecoder = DatagramDecoder<Both>;
+
 /// Iterator over the events of one datagram; see [`DatagramDecoder::decode`].
 #[derive(Debug)]
-pub struct Datagram<'d, 'a> {
-    owner: &'d mut DatagramDecoder,
-    engine: Decoder,
-    whole: Option<OwnedFrame<Packet>>,
+pub struct Datagram<'d, 'a, S: Side> {
+    owner: &'d mut DatagramDecoder<S>,
+    engine: Engine<S>,
+    whole: Option<OwnedFrame<S::Message>>,
     rest: &'a [u8],
     base: u64,
     finished: bool,
 }
 
-impl Iterator for Datagram<'_, '_> {
-    type Item = OwnedEvent<Framing>;
+impl<S: Side> Iterator for Datagram<'_, '_, S> {
+    type Item = OwnedEvent<Framing<S>>;
 
     fn next(&mut self) -> Option<Self::Item> {
         if let Some(frame) = self.whole.take() {
@@ -129,8 +141,8 @@ impl Iterator for Datagram<'_, '_> {
             return None;
         }
         let event = match self.engine.decode(&mut self.rest) {
-            Some(event) => Some(owned_event::<Framing>(event)),
-            None => self.engine.finish().map(owned_event::<Framing>),
+            Some(event) => Some(owned_event::<Framing<S>>(event)),
+            None => self.engine.finish().map(owned_event::<Framing<S>>),
         };
         let Some(event) = event else {
             self.finished = true;
@@ -152,7 +164,7 @@ impl Iterator for Datagram<'_, '_> {
 }
 
 #[cfg(feature = "defmt")]
-impl defmt::Format for Datagram<'_, '_> {
+impl<S: Side> defmt::Format for Datagram<'_, '_, S> {
     fn format(&self, f: defmt::Formatter<'_>) {
         defmt::write!(
             f,

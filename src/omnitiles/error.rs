@@ -1,8 +1,11 @@
-//! Why an OmniTiles candidate frame was rejected.
+//! Why an OmniTiles candidate frame was rejected, and why a name did not parse.
 
 /// A rejected OmniTiles candidate. Never fatal: the decoder has already
 /// dropped the candidate's start byte and carries on.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+///
+/// With the `serde` feature an error is written as the command-line tool's
+/// diagnostic event (without its `offset`): an `error` tag and the variant's
+/// fields, e.g. `{"error":"checksum","expected":248,"found":247}`.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
 #[non_exhaustive]
@@ -43,4 +46,53 @@ pub enum Error {
         /// The candidate's length.
         len: usize,
     },
+    /// Parsing one whole frame (`TryFrom<&[u8]>`): it does not begin with the
+    /// start byte `0xA5`. The decoders never report it: they only ever look at
+    /// candidates that begin with it.
+    #[error("a frame begins with 0xa5, not {found:#04x}")]
+    BadStart {
+        /// The first byte.
+        found: u8,
+    },
+    /// Parsing one whole frame (`TryFrom<&[u8]>`): no message with its id has
+    /// its length (bytes after a command, or a telemetry length that is no
+    /// layout's). The decoders never report it.
+    #[error("no message with this id is {len} bytes long")]
+    BadLength {
+        /// The frame's length.
+        len: usize,
+    },
+}
+
+/// A name that [`FromStr`](core::str::FromStr) does not know: no
+/// [`Layout`](super::Layout), [`Layouts`](super::Layouts) or
+/// [`Motor`](super::Motor) has it.
+///
+/// ```
+/// use robowire::omnitiles::Layout;
+/// let err = "ble52".parse::<Layout>().unwrap_err();
+/// assert_eq!(err.to_string(), "unknown layout (expected pos7, uwb15, uwbtof17, spi45 or ble53)");
+/// ```
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
+#[error("unknown {what} (expected {expected})")]
+pub struct UnknownName {
+    what: &'static str,
+    expected: &'static str,
+}
+
+impl UnknownName {
+    pub(crate) const fn new(what: &'static str, expected: &'static str) -> Self {
+        UnknownName { what, expected }
+    }
+
+    /// What kind of name was expected: `"layout"` or `"motor"`.
+    pub const fn what(&self) -> &'static str {
+        self.what
+    }
+
+    /// The names that would have been accepted, as a phrase.
+    pub const fn expected(&self) -> &'static str {
+        self.expected
+    }
 }

@@ -1,91 +1,201 @@
-//! Where OmniTiles frames start and end in a byte stream.
+//! Where OmniTiles frames start and end in a byte stream, for each side of
+//! the link. The decoding policy is described in the [module
+//! docs](super#what-the-decoders-accept).
 
-use super::command::{payload_len, Command};
-use super::layout::{Layout, Layouts};
-use super::telemetry::Telemetry;
-use super::{checksum, id, Error, Packet, START};
+use core::marker::PhantomData;
+
+use crate::encode::Encode;
+pub use crate::side::{Both, Device, Host};
 use crate::stream::{self, Check};
 
-/// What an OmniTiles decoder accepts: commands (bytes from the host),
-/// telemetry in a set of layouts (bytes from the tile), or both.
-///
-/// # Telemetry length policy
-///
-/// Telemetry has no length byte and one id for every layout, so with several
-/// layouts enabled a candidate can validate at more than one length. The
-/// decoder tries the enabled lengths shortest first and accepts length `L`
-/// when the 8-bit sum validates at `L` **and** the length is confirmed:
-///
-/// * `L` is the longest enabled layout (emitted as soon as it is complete), or
-/// * the bytes after it begin another accepted frame (`a5` and an accepted id,
-///   e.g. `a5 60`), or
-/// * the input ends exactly at `L` (or at `L + 1` with a lone `a5`), which only
-///   [`finish`](crate::StreamDecoder::finish) can say.
-///
-/// A shorter frame therefore waits for two more bytes (the next header). With
-/// a single layout there is nothing to confirm: every frame is emitted as
-/// soon as it is complete. On a clean stream of any mix of the enabled layouts
-/// this gives no false and no lost frames, except where a frame's own bytes
-/// look like a shorter frame and a header: a 53-byte frame whose bytes 1..=5
-/// sum to byte 6 and whose bytes 7 and 8 are `a5 60` (for instance m1 = m2 =
-/// 0 and UWB d0 = `0xA560`, d1 = `0x0060`) is taken as a 7-byte frame, and
-/// likewise at 15 and 17 bytes; for random contents that is about one frame
-/// in 2^24. In noise, a short frame followed by garbage is dropped
-/// ([`Error::Unconfirmed`]) rather than guessed at. Name a single layout when
-/// you know it.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Framing {
-    commands: bool,
-    layouts: Layouts,
+use super::command::Command;
+use super::error::Error;
+use super::layout::{Layout, Layouts};
+use super::message::Message;
+use super::telemetry::Telemetry;
+use super::wire::{checksum, id, payload_len, sum8, MAX_COMMAND_LEN, START};
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for super::Host {}
+    impl Sealed for super::Device {}
+    impl Sealed for super::Both {}
 }
 
-impl Framing {
-    /// Accept commands and telemetry in the four documented layouts.
-    pub const ANY: Framing = Framing::any(Layouts::DOCUMENTED);
+/// Which messages a [`Framing`] accepts (sealed: [`Host`] telemetry,
+/// [`Device`] commands, [`Both`] either).
+pub trait Side:
+    sealed::Sealed + Copy + Eq + core::hash::Hash + core::fmt::Debug + Default + 'static
+{
+    /// The message a decoder of this side yields: [`Telemetry`],
+    /// [`Command`] or [`Message`]. Each encodes, and converts into a
+    /// [`Message`].
+    type Message: Copy + core::fmt::Debug + PartialEq + Encode + Into<Message>;
+    /// Whether commands are accepted.
+    const COMMANDS: bool;
+    /// The telemetry layouts of [`Framing::new`]: the documented four, or
+    /// none for [`Device`].
+    const DEFAULT_LAYOUTS: Layouts;
 
-    /// Accept commands only: a tile's view of the link (`--from host`).
-    pub const fn commands() -> Framing {
-        Framing {
-            commands: true,
-            layouts: Layouts::NONE,
+    /// Check a candidate whose id byte is `id` (the stream engine's `check`
+    /// past the header).
+    #[doc(hidden)]
+    fn check_id(framing: &Framing<Self>, id: u8, c: &[u8], at_end: bool) -> Check<Error>;
+
+    /// Whether `id` begins a frame this side accepts, given `layouts`.
+    #[doc(hidden)]
+    fn accepts_id(layouts: Layouts, id: u8) -> bool;
+
+    /// A frame that passed framing as this side's message.
+    #[doc(hidden)]
+    fn parse(frame: &[u8]) -> Result<Self::Message, Error>;
+}
+
+/// A [`Side`] that accepts telemetry, so its [`Framing`] has a set of
+/// layouts: [`Host`] and [`Both`] (sealed).
+pub trait TelemetrySide: Side {}
+
+impl TelemetrySide for Host {}
+impl TelemetrySide for Both {}
+
+impl Side for Host {
+    type Message = Telemetry;
+    const COMMANDS: bool = false;
+    const DEFAULT_LAYOUTS: Layouts = Layouts::DOCUMENTED;
+
+    #[inline(always)]
+    fn check_id(framing: &Framing<Host>, id: u8, c: &[u8], at_end: bool) -> Check<Error> {
+        if id == id::TELEMETRY && !framing.layouts.is_empty() {
+            framing.check_telemetry(c, at_end)
+        } else {
+            Check::Reject(Error::UnknownId { id })
         }
     }
 
-    /// Accept telemetry in `layouts` only: a host's view (`--from tile`).
-    pub const fn telemetry(layouts: Layouts) -> Framing {
-        Framing {
-            commands: false,
-            layouts,
+    #[inline]
+    fn accepts_id(layouts: Layouts, id: u8) -> bool {
+        id == id::TELEMETRY && !layouts.is_empty()
+    }
+
+    #[inline(always)]
+    fn parse(frame: &[u8]) -> Result<Telemetry, Error> {
+        match frame.get(1) {
+            Some(&id::TELEMETRY) => Telemetry::parse_framed(frame),
+            id => Err(Error::UnknownId {
+                id: id.copied().unwrap_or(0),
+            }),
+        }
+    }
+}
+
+impl Side for Device {
+    type Message = Command;
+    const COMMANDS: bool = true;
+    const DEFAULT_LAYOUTS: Layouts = Layouts::NONE;
+
+    #[inline(always)]
+    fn check_id(_: &Framing<Device>, id: u8, c: &[u8], at_end: bool) -> Check<Error> {
+        check_command(id, c, at_end)
+    }
+
+    #[inline]
+    fn accepts_id(_: Layouts, id: u8) -> bool {
+        payload_len(id).is_some()
+    }
+
+    #[inline(always)]
+    fn parse(frame: &[u8]) -> Result<Command, Error> {
+        Command::parse_framed(frame)
+    }
+}
+
+impl Side for Both {
+    type Message = Message;
+    const COMMANDS: bool = true;
+    const DEFAULT_LAYOUTS: Layouts = Layouts::DOCUMENTED;
+
+    #[inline(always)]
+    fn check_id(framing: &Framing<Both>, id: u8, c: &[u8], at_end: bool) -> Check<Error> {
+        if id == id::TELEMETRY && !framing.layouts.is_empty() {
+            framing.check_telemetry(c, at_end)
+        } else {
+            check_command(id, c, at_end)
         }
     }
 
-    /// Accept commands and telemetry in `layouts`.
-    pub const fn any(layouts: Layouts) -> Framing {
+    #[inline]
+    fn accepts_id(layouts: Layouts, id: u8) -> bool {
+        Host::accepts_id(layouts, id) || Device::accepts_id(layouts, id)
+    }
+
+    #[inline(always)]
+    fn parse(frame: &[u8]) -> Result<Message, Error> {
+        if frame.get(1) == Some(&id::TELEMETRY) {
+            Telemetry::parse_framed(frame).map(Message::Telemetry)
+        } else {
+            Command::parse_framed(frame).map(Message::Command)
+        }
+    }
+}
+
+/// What an OmniTiles decoder accepts, by side: [`Framing<Host>`] telemetry in
+/// a set of layouts (bytes from the tile), [`Framing<Device>`] commands (bytes
+/// from the host), [`Framing<Both>`] both. The telemetry length policy is in
+/// the [module docs](super#telemetry-length-policy).
+///
+/// ```
+/// use robowire::omnitiles::{Framing, HostDecoder, Layout, Layouts};
+/// let decoder = HostDecoder::new(Framing::new().with_layouts(Layouts::only(Layout::Ble53)));
+/// assert_eq!(decoder.framing().layouts(), Layouts::only(Layout::Ble53));
+/// assert!(!decoder.framing().accepts_commands());
+/// ```
+///
+/// With the `serde` feature a framing is written as its layouts,
+/// `{"layouts":23}` (the side is its type); a device framing refuses any
+/// layout.
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Framing<S> {
+    layouts: Layouts,
+    side: PhantomData<S>,
+}
+
+impl<S: Side> Framing<S> {
+    /// The side's default: the four documented layouts for [`Host`] and
+    /// [`Both`], commands for [`Device`] and [`Both`].
+    pub const fn new() -> Self {
         Framing {
-            commands: true,
-            layouts,
+            layouts: S::DEFAULT_LAYOUTS,
+            side: PhantomData,
         }
     }
 
     /// Whether commands are accepted.
     pub const fn accepts_commands(&self) -> bool {
-        self.commands
+        S::COMMANDS
     }
 
-    /// The telemetry layouts accepted.
+    /// The telemetry layouts accepted (none for [`Device`]).
     pub const fn layouts(&self) -> Layouts {
         self.layouts
     }
 
     /// Whether `id` begins a frame this decoder accepts.
-    pub const fn accepts_id(&self, id: u8) -> bool {
-        if id == id::TELEMETRY {
-            !self.layouts.is_empty()
-        } else {
-            self.commands && payload_len(id).is_some()
+    pub fn accepts_id(&self, id: u8) -> bool {
+        S::accepts_id(self.layouts, id)
+    }
+
+    /// A framing accepting `layouts`, if this side accepts telemetry or
+    /// `layouts` is empty.
+    #[cfg(feature = "serde")]
+    pub(super) fn from_layouts(layouts: Layouts) -> Option<Self> {
+        if S::DEFAULT_LAYOUTS.is_empty() && !layouts.is_empty() {
+            return None;
         }
+        Some(Framing {
+            layouts,
+            side: PhantomData,
+        })
     }
 
     /// Does what follows a telemetry candidate confirm its length?
@@ -162,6 +272,101 @@ impl Framing {
     }
 }
 
+impl<S: TelemetrySide> Framing<S> {
+    /// Accept telemetry in `layouts` (by default the four documented ones).
+    /// Name a single layout when you know it: see the [length
+    /// policy](super#telemetry-length-policy).
+    pub const fn with_layouts(self, layouts: Layouts) -> Self {
+        Framing {
+            layouts,
+            side: PhantomData,
+        }
+    }
+}
+
+impl Framing<Host> {
+    /// Accept telemetry in `layouts` only: a host's view (`--from tile`).
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `Framing::<Host>::new().with_layouts(layouts)`"
+    )]
+    pub const fn telemetry(layouts: Layouts) -> Self {
+        Framing::new().with_layouts(layouts)
+    }
+}
+
+impl Framing<Both> {
+    /// Accept commands only: a tile's view of the link (`--from host`). As in
+    /// 0.1 this is a framing of both directions with no telemetry layout, so
+    /// its decoder yields [`Message`]s; [`Framing<Device>`] decodes the same
+    /// frames as [`Command`]s, without the telemetry code.
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `Framing::<Device>::new()` (a `DeviceDecoder`, which yields `Command`s)"
+    )]
+    pub const fn commands() -> Self {
+        Framing::new().with_layouts(Layouts::NONE)
+    }
+
+    /// Accept commands and telemetry in the four documented layouts.
+    #[deprecated(since = "0.2.0", note = "use `Framing::<Both>::new()`")]
+    pub const ANY: Framing<Both> = Framing::new();
+
+    /// Accept commands and telemetry in `layouts`.
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `Framing::<Both>::new().with_layouts(layouts)`"
+    )]
+    pub const fn any(layouts: Layouts) -> Self {
+        Framing::new().with_layouts(layouts)
+    }
+}
+
+impl<S: Side> Default for Framing<S> {
+    fn default() -> Self {
+        Framing::new()
+    }
+}
+
+/// A command candidate: its id fixes its length.
+#[inline(always)]
+fn check_command(id: u8, c: &[u8], at_end: bool) -> Check<Error> {
+    let n = match payload_len(id) {
+        Some(n) => n,
+        None => return Check::Reject(Error::UnknownId { id }),
+    };
+    let len = 3 + n;
+    if c.len() < len {
+        return if at_end {
+            Check::Reject(Error::Truncated { len: c.len() })
+        } else {
+            Check::Need(len)
+        };
+    }
+    let frame = &c[..len];
+    let expected = match c.first_chunk::<MAX_COMMAND_LEN>() {
+        // Enough bytes for the longest command: add the payload without
+        // branching on its length (the mix of commands in a stream is
+        // unpredictable), masking the bytes past it.
+        Some(window) => {
+            let word = u32::from_le_bytes([window[2], window[3], window[4], 0]);
+            // n is 0, 1 or 3: keep its low n bytes.
+            let mask = (1u32 << (8 * n)) - 1;
+            let bytes = (word & mask).to_le_bytes();
+            id.wrapping_add(bytes[0])
+                .wrapping_add(bytes[1])
+                .wrapping_add(bytes[2])
+        }
+        None => checksum(&frame[1..len - 1]),
+    };
+    let found = frame[len - 1];
+    if expected == found {
+        Check::Frame(len)
+    } else {
+        Check::Reject(Error::Checksum { expected, found })
+    }
+}
+
 /// A single telemetry layout: the candidate is a frame of exactly its length
 /// or nothing, and nothing needs confirming.
 #[inline(always)]
@@ -194,53 +399,10 @@ fn check_fixed<const L: usize>(c: &[u8], at_end: bool) -> Check<Error> {
     }
 }
 
-/// The wrapping 8-bit sum of `bytes`, eight bytes at a time: each `u64` word
-/// is split into its even and odd bytes as four 16-bit lanes, the lanes are
-/// accumulated (up to 128 words cannot overflow a lane), and the lanes are
-/// folded at the end. Equal to `bytes.iter().fold(0, u8::wrapping_add)`.
-#[inline(always)]
-pub(crate) fn sum8(bytes: &[u8]) -> u8 {
-    const LANES: u64 = 0x00ff_00ff_00ff_00ff;
-    let mut total: u8 = 0;
-    let mut words = bytes.chunks_exact(8);
-    let mut acc: u64 = 0;
-    let mut in_acc = 0;
-    for word in words.by_ref() {
-        let mut w = [0u8; 8];
-        w.copy_from_slice(word);
-        let w = u64::from_le_bytes(w);
-        acc += (w & LANES) + ((w >> 8) & LANES);
-        in_acc += 1;
-        if in_acc == 128 {
-            total = total.wrapping_add(fold_lanes(acc));
-            acc = 0;
-            in_acc = 0;
-        }
-    }
-    total = total.wrapping_add(fold_lanes(acc));
-    words
-        .remainder()
-        .iter()
-        .fold(total, |s, &b| s.wrapping_add(b))
-}
-
-/// The sum of four 16-bit lanes, modulo 256.
-#[inline(always)]
-fn fold_lanes(acc: u64) -> u8 {
-    let acc = (acc & 0x0000_ffff_0000_ffff) + ((acc >> 16) & 0x0000_ffff_0000_ffff);
-    (acc + (acc >> 32)) as u8
-}
-
-impl Default for Framing {
-    fn default() -> Self {
-        Framing::ANY
-    }
-}
-
-impl stream::FrameRules for Framing {
+impl<S: Side> stream::FrameRules for Framing<S> {
     type Error = Error;
-    type Message<'a> = Packet;
-    type Owned = Packet;
+    type Message<'a> = S::Message;
+    type Owned = S::Message;
 
     /// `a5` and the id: enough to reject an unknown id.
     const HEADER_LEN: usize = 2;
@@ -263,43 +425,7 @@ impl stream::FrameRules for Framing {
                 Check::Need(2)
             };
         };
-        if id == id::TELEMETRY && !self.layouts.is_empty() {
-            return self.check_telemetry(c, at_end);
-        }
-        let n = match payload_len(id) {
-            Some(n) if self.commands => n,
-            _ => return Check::Reject(Error::UnknownId { id }),
-        };
-        let len = 3 + n;
-        if c.len() < len {
-            return if at_end {
-                Check::Reject(Error::Truncated { len: c.len() })
-            } else {
-                Check::Need(len)
-            };
-        }
-        let frame = &c[..len];
-        let expected = match c.first_chunk::<{ Command::MAX_LEN }>() {
-            // Enough bytes for the longest command: add the payload without
-            // branching on its length (the mix of commands in a stream is
-            // unpredictable), masking the bytes past it.
-            Some(window) => {
-                let word = u32::from_le_bytes([window[2], window[3], window[4], 0]);
-                // n is 0, 1 or 3: keep its low n bytes.
-                let mask = (1u32 << (8 * n)) - 1;
-                let bytes = (word & mask).to_le_bytes();
-                id.wrapping_add(bytes[0])
-                    .wrapping_add(bytes[1])
-                    .wrapping_add(bytes[2])
-            }
-            None => checksum(&frame[1..len - 1]),
-        };
-        let found = frame[len - 1];
-        if expected == found {
-            Check::Frame(len)
-        } else {
-            Check::Reject(Error::Checksum { expected, found })
-        }
+        S::check_id(self, id, c, at_end)
     }
 
     fn truncated(&self, len: usize) -> Error {
@@ -315,53 +441,11 @@ impl stream::FrameRules for Framing {
     }
 
     #[inline(always)]
-    fn parse(&self, frame: &[u8]) -> Result<Packet, Error> {
-        parse_frame(frame)
+    fn parse(&self, frame: &[u8]) -> Result<S::Message, Error> {
+        S::parse(frame)
     }
 
-    fn to_owned(message: Packet) -> Packet {
+    fn to_owned(message: S::Message) -> S::Message {
         message
-    }
-}
-
-/// Turn a frame that passed framing (start byte, accepted id, length and
-/// checksum already checked) into a packet.
-#[inline(always)]
-pub(crate) fn parse_frame(frame: &[u8]) -> Result<Packet, Error> {
-    let id = frame.get(1).copied().unwrap_or(0);
-    if id == id::TELEMETRY {
-        let layout = Layout::from_len(frame.len()).ok_or(Error::Truncated { len: frame.len() })?;
-        return Ok(Packet::Telemetry(Telemetry::parse(layout, frame)));
-    }
-    frame
-        .get(2..frame.len().saturating_sub(1))
-        .and_then(|payload| Command::from_parts(id, payload))
-        .map(Packet::Command)
-        .ok_or(Error::UnknownId { id })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{checksum, sum8};
-
-    #[test]
-    fn sum8_equals_the_bytewise_sum() {
-        // Lengths across the 8-byte words, the remainder and the 128-word
-        // lane flush, over bytes that make the lanes carry.
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let bytes: [u8; 1100] = core::array::from_fn(|_| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 24) as u8 | 0x80
-        });
-        let lengths = (0..=80).chain([127 * 8, 128 * 8, 128 * 8 + 1, 129 * 8 + 7, 1100]);
-        for len in lengths {
-            for start in [0, 1, 3] {
-                let slice = &bytes[start..start + len.min(1100 - start)];
-                assert_eq!(sum8(slice), checksum(slice), "len {len} from {start}");
-            }
-        }
-        assert_eq!(sum8(&[0xff; 1100]), (1100u32 * 0xff % 256) as u8);
     }
 }

@@ -1,10 +1,24 @@
 //! Telemetry layouts: which fields a telemetry frame of a given length carries.
 
+use core::fmt;
+use core::str::FromStr;
+
+use super::error::UnknownName;
+
+/// The names [`Layout`] and [`Layouts`] accept, as a phrase for messages.
+const LAYOUT_NAMES: &str = "pos7, uwb15, uwbtof17, spi45 or ble53";
+
 /// One telemetry layout. All layouts share the id `0x60` and are told apart only
 /// by their total length (spec §4).
 ///
-/// With the `serde` feature a layout is written as its [`name`](Layout::name)
-/// (`"pos7"`, …, `"ble53"`), as in the command-line tool's JSON.
+/// Its name (`Display`, `FromStr`, and the `serde` form) is the command-line
+/// tool's: `pos7`, `uwb15`, `uwbtof17`, `spi45`, `ble53`.
+///
+/// ```
+/// use robowire::omnitiles::Layout;
+/// assert_eq!("ble53".parse(), Ok(Layout::Ble53));
+/// assert_eq!(Layout::UwbTof17.to_string(), "uwbtof17");
+/// ```
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", serde(rename_all = "lowercase"))]
@@ -91,9 +105,17 @@ impl Layout {
     }
 }
 
-impl core::fmt::Display for Layout {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+impl fmt::Display for Layout {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
+    }
+}
+
+impl FromStr for Layout {
+    type Err = UnknownName;
+
+    fn from_str(name: &str) -> Result<Layout, UnknownName> {
+        Layout::from_name(name).ok_or(UnknownName::new("layout", LAYOUT_NAMES))
     }
 }
 
@@ -105,6 +127,22 @@ impl core::fmt::Display for Layout {
 /// assert!(ble_only.contains(Layout::Ble53));
 /// assert_eq!(Layouts::DOCUMENTED.len(), 4);
 /// assert_eq!(Layouts::DOCUMENTED.longest(), Some(Layout::Ble53));
+/// ```
+///
+/// Its text form (`Display`, `FromStr`) is the command-line tool's `--layout`
+/// syntax: layout names separated by commas, where `auto` stands for the four
+/// documented layouts ([`Layouts::DOCUMENTED`]). `Display` writes `auto`
+/// first when the set holds them, then the other layouts shortest first, and
+/// `none` for the empty set (which `FromStr` also reads).
+///
+/// ```
+/// use robowire::omnitiles::{Layout, Layouts};
+/// let layouts: Layouts = "auto,spi45".parse().unwrap();
+/// assert_eq!(layouts, Layouts::ALL);
+/// assert_eq!(layouts.to_string(), "auto,spi45");
+/// assert_eq!("ble53,pos7".parse(), Ok(Layouts::only(Layout::Pos7).with(Layout::Ble53)));
+/// assert_eq!(Layouts::only(Layout::Pos7).with(Layout::Ble53).to_string(), "pos7,ble53");
+/// assert!("ble52".parse::<Layouts>().is_err());
 /// ```
 ///
 /// With the `serde` feature a set is written as a number, its bits (bit `i`
@@ -171,6 +209,47 @@ impl Layouts {
     /// The layouts in the set, shortest first.
     pub fn iter(self) -> impl Iterator<Item = Layout> {
         Layout::ALL.into_iter().filter(move |l| self.contains(*l))
+    }
+}
+
+impl fmt::Display for Layouts {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.is_empty() {
+            return f.write_str("none");
+        }
+        let mut rest = *self;
+        let mut first = true;
+        if rest.0 & Layouts::DOCUMENTED.0 == Layouts::DOCUMENTED.0 {
+            f.write_str("auto")?;
+            rest = Layouts(rest.0 & !Layouts::DOCUMENTED.0);
+            first = false;
+        }
+        for layout in rest.iter() {
+            if !first {
+                f.write_str(",")?;
+            }
+            f.write_str(layout.name())?;
+            first = false;
+        }
+        Ok(())
+    }
+}
+
+impl FromStr for Layouts {
+    type Err = UnknownName;
+
+    fn from_str(text: &str) -> Result<Layouts, UnknownName> {
+        const EXPECTED: &str = "pos7, uwb15, uwbtof17, spi45, ble53 or auto, separated by commas";
+        if text == "none" {
+            return Ok(Layouts::NONE);
+        }
+        text.split(',')
+            .try_fold(Layouts::NONE, |set, name| match name {
+                "auto" => Ok(Layouts(set.0 | Layouts::DOCUMENTED.0)),
+                name => Layout::from_name(name)
+                    .map(|layout| set.with(layout))
+                    .ok_or(UnknownName::new("layout", EXPECTED)),
+            })
     }
 }
 

@@ -7,119 +7,187 @@
 //! or the firmware's 45-byte SPI frame ([`Layout`]). Wire facts follow the
 //! project's specification of the protocol (Clue88/OmniTiles at `094ed61`).
 //!
-//! * [`Command`] and [`Telemetry`] are the typed messages, [`Packet`] either.
-//!   Both implement [`Encode`].
-//! * [`Decoder`] decodes a byte stream incrementally (see
-//!   [`StreamDecoder`]); [`Framing`] says what it
-//!   accepts and documents the telemetry length policy.
+//! | | host (decodes telemetry) | device (decodes commands) | both (captures) |
+//! |---|---|---|---|
+//! | framing | [`Framing<Host>`] | [`Framing<Device>`] | [`Framing<Both>`] |
+//! | stream decoder | [`HostDecoder`], [`host_decoder()`] | [`DeviceDecoder`], [`device_decoder()`] | [`BothDecoder`], [`both_decoder()`] |
+//! | buffer | [`HOST_BUFFER`] | [`DEVICE_BUFFER`] | [`BOTH_BUFFER`] |
+//! | message | [`Telemetry`] | [`Command`] | [`Message`] |
+//! | datagrams | [`HostDatagramDecoder`] | [`DeviceDatagramDecoder`] | [`BothDatagramDecoder`] |
+//!
+//! * [`Command`], [`Telemetry`] and [`Message`] (either) are the typed
+//!   messages; they own everything. Each implements [`Encode`] (longest frame
+//!   [`MAX_FRAME_LEN`]), `TryFrom<&[u8]>` for one whole frame, and `Display`.
+//! * The stream decoders decode a byte stream incrementally (see
+//!   [`StreamDecoder`]); [`Framing`] says what they accept.
 //! * [`DatagramDecoder`] decodes runs of bytes whose boundaries are known (BLE
 //!   notifications and writes, SPI buffers).
+//! * [`Layout`], [`Layouts`] and [`Motor`] have names (`FromStr`, `Display`):
+//!   `ble53`, `auto,spi45`, `m1`.
 //! * [`units`] converts bytes to duty, millimetres and back.
+//! * With the `serde` feature every message and [`Error`] is written and read
+//!   as the `robowire` command-line tool's JSON lines:
+//!   `{"type":"m1_extend","speed":200}`.
 //!
 //! ```
-//! use robowire::omnitiles::{Command, Decoder, Framing, Motor, Packet};
+//! use robowire::omnitiles::{device_decoder, Command, Motor};
 //!
-//! let mut decoder = Decoder::new(Framing::commands());
-//! let mut packets = Vec::new();
+//! let mut decoder = device_decoder();
+//! let mut commands = Vec::new();
 //! // Garbage, a false start (a5 a5), and a frame split across two chunks.
 //! for chunk in [&[0x00, 0xa5, 0xa5, 0x30][..], &[0xc8, 0xf8, 0xa5, 0x50, 0x50]] {
 //!     for event in decoder.feed(chunk) {
 //!         match event {
-//!             Ok(frame) => packets.push(frame.message),
+//!             Ok(frame) => commands.push(frame.message),
 //!             Err(rejected) => eprintln!("skipped: {rejected}"),
 //!         }
 //!     }
 //! }
 //! decoder.flush().for_each(drop);
-//! assert_eq!(packets, [
-//!     Packet::Command(Command::Extend { motor: Motor::M1, speed: 200 }),
-//!     Packet::Command(Command::Ping),
-//! ]);
+//! assert_eq!(commands, [Command::Extend { motor: Motor::M1, speed: 200 }, Command::Ping]);
 //! assert_eq!(decoder.stats().frames, 2);
 //! ```
+//!
+//! A host names the layouts its tile sends:
+//!
+//! ```
+//! use robowire::omnitiles::{Framing, HostDecoder, Layout, Layouts};
+//!
+//! let mut decoder = HostDecoder::new(Framing::new().with_layouts(Layouts::only(Layout::Pos7)));
+//! let mut input: &[u8] = &[0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x22];
+//! let frame = decoder.decode(&mut input).unwrap().unwrap();
+//! assert_eq!(frame.message.m1_pos, Some(2000));
+//! ```
+//!
+//! # What the decoders accept
+//!
+//! [`Framing<Device>`] accepts commands (a tile's view of the link),
+//! [`Framing<Host>`] telemetry in a set of layouts (a host's view) and
+//! [`Framing<Both>`] both. The telemetry layouts are
+//! [`Layouts::DOCUMENTED`] (7, 15, 17 and 53 bytes) unless
+//! [`with_layouts`](Framing::with_layouts) names others: any subset, such as
+//! [`Layouts::ALL`] or [`Layouts::only`]`(Layout::Ble53)`. A device framing
+//! has no layouts, and its decoder contains no telemetry code.
+//!
+//! # Telemetry length policy
+//!
+//! With several layouts enabled a candidate can validate at more than one
+//! length (there is no length byte and the sum is 8 bits). The decoder is
+//! deterministic:
+//!
+//! 1. It tries the enabled lengths **shortest first**.
+//! 2. Length `L` is accepted when the sum validates at `L` **and** the length
+//!    is confirmed: `L` is the longest enabled layout (emitted as soon as it is
+//!    complete); or the two bytes after it are another accepted frame's header
+//!    (`a5 60`, or `a5` and a command id when commands are accepted); or the
+//!    input ends exactly at `L` (or at `L + 1` with a lone `a5`), which only
+//!    [`finish`](crate::StreamDecoder::finish) and
+//!    [`flush`](crate::StreamDecoder::flush) can say.
+//! 3. Otherwise it moves on to the next length; when none is accepted the
+//!    candidate is rejected (the longest layout's [`Error::Checksum`], or
+//!    [`Error::Unconfirmed`]) and the decoder resyncs by one byte.
+//!
+//! Consequences: a frame of the longest enabled layout is emitted as soon as
+//! it is complete; a shorter one waits for the next frame's first two bytes;
+//! with a single layout enabled every frame is emitted as soon as it is
+//! complete and nothing needs confirming. On a clean stream of any mix of the
+//! enabled layouts, at any chunking, there are no false and no lost frames,
+//! with one exception the wire format cannot rule out: a longer frame whose
+//! own bytes validate as a shorter layout followed by an `a5 60` header is
+//! taken as the shorter frame. For instance a 53-byte frame whose bytes 1..=5
+//! sum to byte 6 and whose bytes 7 and 8 are `a5 60` (m1 = m2 = 0 and UWB d0 =
+//! `0xA560`, d1 = `0x0060`) is taken as a 7-byte frame, and likewise at 15
+//! and 17 bytes; for random contents that is about one frame in 2^24, pinned
+//! by a test. On a noisy stream, a short frame followed by garbage is dropped
+//! ([`Error::Unconfirmed`]) rather than guessed at. Name a single layout when
+//! you know it: then neither can happen.
+//!
+//! # Datagrams
+//!
+//! [`DatagramDecoder`] decodes byte runs whose boundaries are known (a BLE
+//! notification, a 128-byte SPI buffer, a BLE write). A datagram that starts
+//! `a5 60` is one telemetry frame of the enabled layout with exactly its
+//! length, or else of the shortest enabled layout whose checksum validates
+//! with only zero padding after it (an SPI buffer). Anything else — the nRF's
+//! brake buffer `a5 32 32 a5 42 42` + 122 × `00`, several commands in one
+//! write — goes through the stream decoder finished at the datagram's end, so
+//! every command comes out and nothing leaks into the next datagram.
 
 mod command;
 mod datagram;
 mod error;
 mod framing;
 mod layout;
+mod message;
+#[cfg(feature = "serde")]
+mod schema;
 mod telemetry;
 pub mod units;
+mod whole;
+mod wire;
 
-pub use command::{id, payload_len, Command, Motor};
-pub use datagram::{Datagram, DatagramDecoder};
-pub use error::Error;
-pub use framing::Framing;
+pub use command::{Command, Motor};
+pub use datagram::{
+    BothDatagramDecoder, Datagram, DatagramDecoder, DeviceDatagramDecoder, HostDatagramDecoder,
+};
+pub use error::{Error, UnknownName};
+pub use framing::{Both, Device, Framing, Host, Side, TelemetrySide};
 pub use layout::{Layout, Layouts};
+pub use message::Message;
 pub use telemetry::{Imu, Telemetry, NO_READING};
+pub use wire::{checksum, id, payload_len, MAX_FRAME_LEN, START};
 
-use crate::encode::{Encode, EncodeError};
+#[cfg(doc)]
+use crate::encode::Encode;
 use crate::stream::StreamDecoder;
 
-/// The start byte of every frame.
-pub const START: u8 = 0xA5;
+/// Buffer size of a [`HostDecoder`]: room for the longest frame, a frame
+/// starting inside it and the next header after that (the engine's resync
+/// verification).
+pub const HOST_BUFFER: usize = 128;
+/// Buffer size of a [`DeviceDecoder`].
+pub const DEVICE_BUFFER: usize = 128;
+/// Buffer size of a [`BothDecoder`].
+pub const BOTH_BUFFER: usize = 128;
 
-/// The longest frame of any kind (the 53-byte BLE telemetry).
-pub const MAX_FRAME_LEN: usize = Telemetry::MAX_LEN;
+/// Decodes telemetry (the host's side).
+pub type HostDecoder = StreamDecoder<Framing<Host>, HOST_BUFFER>;
+/// Decodes commands (the tile's side, or a simulated tile).
+pub type DeviceDecoder = StreamDecoder<Framing<Device>, DEVICE_BUFFER>;
+/// Decodes both directions (captures, tooling).
+pub type BothDecoder = StreamDecoder<Framing<Both>, BOTH_BUFFER>;
 
-/// Internal buffer size: room for the longest frame, a frame starting inside
-/// it and the next header after that (the engine's resync verification).
-pub const BUFFER_LEN: usize = 128;
-
-/// The OmniTiles stream decoder.
-pub type Decoder = StreamDecoder<Framing, BUFFER_LEN>;
-
-/// The checksum of a frame: the wrapping sum of its id and payload bytes.
-///
-/// ```
-/// assert_eq!(robowire::omnitiles::checksum(&[0x30, 0xc8]), 0xf8);
-/// ```
-pub fn checksum(id_and_payload: &[u8]) -> u8 {
-    id_and_payload.iter().fold(0u8, |s, &b| s.wrapping_add(b))
+/// A host decoder accepting telemetry in the four documented layouts.
+pub const fn host_decoder() -> HostDecoder {
+    StreamDecoder::new(Framing::new())
 }
 
-/// Any OmniTiles message.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Packet {
-    /// Host → tile.
-    Command(Command),
-    /// Tile → host.
-    Telemetry(Telemetry),
+/// A device decoder: commands.
+pub const fn device_decoder() -> DeviceDecoder {
+    StreamDecoder::new(Framing::new())
 }
 
-impl Packet {
-    /// The longest frame any packet encodes to.
-    pub const MAX_LEN: usize = MAX_FRAME_LEN;
+/// A decoder of both directions: commands and telemetry in the four
+/// documented layouts.
+pub const fn both_decoder() -> BothDecoder {
+    StreamDecoder::new(Framing::new())
 }
 
-impl From<Command> for Packet {
-    fn from(command: Command) -> Self {
-        Packet::Command(command)
-    }
-}
+/// The old name of [`Message`].
+#[deprecated(since = "0.2.0", note = "renamed to `Message`")]
+pub type Packet = Message;
 
-impl From<Telemetry> for Packet {
-    fn from(telemetry: Telemetry) -> Self {
-        Packet::Telemetry(telemetry)
-    }
-}
+/// The old stream decoder: now one type per side ([`HostDecoder`],
+/// [`DeviceDecoder`], [`BothDecoder`]).
+#[deprecated(
+    since = "0.2.0",
+    note = "use `HostDecoder`, `DeviceDecoder` or `BothDecoder`"
+)]
+pub type Decoder<S = Both> = StreamDecoder<Framing<S>, BOTH_BUFFER>;
 
-impl Encode for Packet {
-    const MAX_LEN: usize = MAX_FRAME_LEN;
-
-    fn encoded_len(&self) -> usize {
-        match self {
-            Packet::Command(c) => c.encoded_len(),
-            Packet::Telemetry(t) => t.encoded_len(),
-        }
-    }
-
-    fn encode(&self, out: &mut [u8]) -> Result<usize, EncodeError> {
-        match self {
-            Packet::Command(c) => c.encode(out),
-            Packet::Telemetry(t) => t.encode(out),
-        }
-    }
-}
+/// The old buffer size constant.
+#[deprecated(
+    since = "0.2.0",
+    note = "use `HOST_BUFFER`, `DEVICE_BUFFER` or `BOTH_BUFFER`"
+)]
+pub const BUFFER_LEN: usize = BOTH_BUFFER;

@@ -1,7 +1,11 @@
 //! Telemetry: tile → host.
 
+use core::fmt;
+
+use super::error::Error;
 use super::layout::Layout;
-use super::{checksum, id, START};
+use super::whole::{check_whole, start_and_id};
+use super::wire::{checksum, id, MAX_FRAME_LEN, START};
 use crate::encode::{check_room, Encode, EncodeError};
 
 /// The `u16` value that means "no reading" in positions, UWB ranges and ToF.
@@ -13,11 +17,12 @@ pub const NO_READING: u16 = 0xFFFF;
 /// Equality compares bit patterns, so a sample with NaNs equals itself and a
 /// decoded sample equals the one that was encoded, bit for bit.
 ///
-/// With the `serde` feature the values are written as numbers. Formats
-/// without NaN and infinities lose them: `serde_json` writes them as `null`,
-/// which does not deserialize back into an `f32`. Binary formats (postcard,
-/// bincode) keep every bit pattern.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+/// With the `serde` feature a sample is the command-line tool's `imu`
+/// object, `{"ax":0.1,"ay":0.2,"az":9.8,"gx":0.01,"gy":-0.02,"gz":0.03}`:
+/// each value is a number that reads back as the same `f32` (also through
+/// `f64`), or for the values JSON has no number for the strings `"inf"`,
+/// `"-inf"` and `"nan:0x7fc00000"` (a NaN's bits), so every bit pattern
+/// survives.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Imu {
@@ -36,6 +41,9 @@ pub struct Imu {
 }
 
 impl Imu {
+    /// The six values' names in wire order, as in the JSON form.
+    pub const NAMES: [&'static str; 6] = ["ax", "ay", "az", "gx", "gy", "gz"];
+
     /// The six values in wire order: ax, ay, az, gx, gy, gz.
     pub const fn to_array(self) -> [f32; 6] {
         [self.ax, self.ay, self.az, self.gx, self.gy, self.gz]
@@ -75,18 +83,21 @@ impl Eq for Imu {}
 ///
 /// ```
 /// use robowire::omnitiles::{Layout, Telemetry};
-/// let t = Telemetry::from_frame(&[0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x22]).unwrap();
+/// let frame = [0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x22];
+/// let t = Telemetry::try_from(&frame[..]).unwrap();
 /// assert_eq!(t.layout, Layout::Pos7);
 /// assert_eq!((t.m1_pos, t.m2_pos), (Some(2000), Some(1000)));
 /// assert_eq!(t.uwb, None); // not carried by the 7-byte layout
+/// assert_eq!(t.to_string(), "telemetry layout=pos7 m1_pos=2000 m2_pos=1000");
 /// ```
 ///
-/// With the `serde` feature, deserializing accepts only telemetry whose field
-/// groups match its layout ([`is_consistent`](Telemetry::is_consistent)), the
-/// telemetry that encodes. Where the layout carries ToF, a missing or `null`
-/// `tof` reads as `Some(None)`: JSON writes `Some(None)` and `None` alike as
-/// `null`, and the layout tells them apart.
-#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+/// With the `serde` feature telemetry is written as the command-line tool's
+/// JSON line for it, without `offset` and `len`: `type` (`"telemetry"`),
+/// `layout`, `m1_pos`, `m2_pos`, then the groups the layout carries; a
+/// `0xFFFF` reading is `null` and a group the layout does not carry is absent
+/// (so `tof: None` and `tof: Some(None)` stay distinct). Deserializing
+/// accepts exactly the groups of the layout, with the tool's messages, and
+/// gives only telemetry that encodes.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Telemetry {
@@ -243,18 +254,25 @@ fn put_reading(
 
 impl Telemetry {
     /// The longest telemetry frame (the 53-byte BLE layout).
-    pub const MAX_LEN: usize = 53;
+    pub const MAX_LEN: usize = MAX_FRAME_LEN;
 
     /// Decode one complete frame whose length selects its layout. Returns
     /// `None` unless the frame starts `a5 60`, has a layout's length and a valid
     /// checksum.
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `Telemetry::try_from(frame)`, which says what is wrong"
+    )]
     pub fn from_frame(frame: &[u8]) -> Option<Telemetry> {
-        let layout = Layout::from_len(frame.len())?;
-        let (&sum, body) = frame.split_last()?;
-        if frame[0] != START || frame[1] != id::TELEMETRY || checksum(&body[1..]) != sum {
-            return None;
-        }
-        Some(Telemetry::parse(layout, frame))
+        Telemetry::try_from(frame).ok()
+    }
+
+    /// A frame that passed framing (start byte, telemetry id, a layout's
+    /// length and checksum already checked) as telemetry.
+    #[inline(always)]
+    pub(crate) fn parse_framed(frame: &[u8]) -> Result<Telemetry, Error> {
+        let layout = Layout::from_len(frame.len()).ok_or(Error::Truncated { len: frame.len() })?;
+        Ok(Telemetry::parse(layout, frame))
     }
 
     /// Read the fields of `frame`, which has `layout`'s length.
@@ -365,43 +383,94 @@ impl Encode for Telemetry {
     }
 }
 
-#[cfg(feature = "serde")]
-impl<'de> serde::Deserialize<'de> for Telemetry {
-    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        /// The fields as serialized; checked against the layout below.
-        #[derive(serde::Deserialize)]
-        #[serde(rename = "Telemetry")]
-        struct Fields {
-            layout: Layout,
-            m1_pos: Option<u16>,
-            m2_pos: Option<u16>,
-            uwb: Option<[Option<u16>; 4]>,
-            tof: Option<Option<u16>>,
-            imu: Option<Imu>,
-            m1_adcs: Option<[u16; 4]>,
-            m2_adcs: Option<[u16; 2]>,
-        }
+/// One whole telemetry frame, start byte to checksum, whose length is a
+/// layout's: nothing before it and nothing after it.
+///
+/// ```
+/// use robowire::omnitiles::{Error, Telemetry};
+/// let frame = [0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x22];
+/// assert!(Telemetry::try_from(&frame[..]).is_ok());
+/// assert_eq!(Telemetry::try_from(&frame[..6]), Err(Error::BadLength { len: 6 }));
+/// assert_eq!(Telemetry::try_from(&[0xa5, 0x50, 0x50][..]), Err(Error::UnknownId { id: 0x50 }));
+/// ```
+impl TryFrom<&[u8]> for Telemetry {
+    type Error = Error;
 
-        let f = <Fields as serde::Deserialize>::deserialize(deserializer)?;
-        let tof = match f.tof {
-            None if f.layout.has_tof() => Some(None),
-            tof => tof,
-        };
-        let telemetry = Telemetry {
-            layout: f.layout,
-            m1_pos: f.m1_pos,
-            m2_pos: f.m2_pos,
-            uwb: f.uwb,
-            tof,
-            imu: f.imu,
-            m1_adcs: f.m1_adcs,
-            m2_adcs: f.m2_adcs,
-        };
-        if !telemetry.is_consistent() {
-            return Err(serde::de::Error::custom(
-                "telemetry field groups do not match the layout",
-            ));
+    fn try_from(frame: &[u8]) -> Result<Telemetry, Error> {
+        let id = start_and_id(frame)?;
+        if id != id::TELEMETRY {
+            return Err(Error::UnknownId { id });
         }
-        Ok(telemetry)
+        let layout = Layout::from_len(frame.len()).ok_or(Error::BadLength { len: frame.len() })?;
+        check_whole(frame, layout.frame_len())?;
+        Ok(Telemetry::parse(layout, frame))
+    }
+}
+
+/// A reading for `Display`: the number, or `null` for no reading.
+struct Reading(Option<u16>);
+
+impl fmt::Display for Reading {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.0 {
+            Some(v) => write!(f, "{v}"),
+            None => f.write_str("null"),
+        }
+    }
+}
+
+/// `[a,b,…]`, each item written by `item`.
+fn list<T: Copy>(
+    f: &mut fmt::Formatter<'_>,
+    items: &[T],
+    item: impl Fn(&mut fmt::Formatter<'_>, T) -> fmt::Result,
+) -> fmt::Result {
+    f.write_str("[")?;
+    for (i, &x) in items.iter().enumerate() {
+        if i > 0 {
+            f.write_str(",")?;
+        }
+        item(f, x)?;
+    }
+    f.write_str("]")
+}
+
+/// One line with the JSON form's words: `telemetry`, then `field=value` pairs
+/// for the fields the layout carries, `null` for no reading:
+/// `telemetry layout=uwb15 m1_pos=2000 m2_pos=1000 uwb=[1500,2500,null,3000]`.
+/// IMU values are Rust's `f32` forms (`0.1`, `inf`, `NaN`).
+impl fmt::Display for Telemetry {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "telemetry layout={} m1_pos={} m2_pos={}",
+            self.layout,
+            Reading(self.m1_pos),
+            Reading(self.m2_pos)
+        )?;
+        if let Some(uwb) = self.uwb {
+            f.write_str(" uwb=")?;
+            list(f, &uwb, |f, d| write!(f, "{}", Reading(d)))?;
+        }
+        if let Some(tof) = self.tof {
+            write!(f, " tof={}", Reading(tof))?;
+        }
+        if let Some(imu) = self.imu {
+            f.write_str(" imu={")?;
+            for (i, (name, v)) in Imu::NAMES.iter().zip(imu.to_array()).enumerate() {
+                let sep = if i == 0 { "" } else { "," };
+                write!(f, "{sep}{name}={v}")?;
+            }
+            f.write_str("}")?;
+        }
+        if let Some(adcs) = self.m1_adcs {
+            f.write_str(" m1_adcs=")?;
+            list(f, &adcs, |f, v| write!(f, "{v}"))?;
+        }
+        if let Some(adcs) = self.m2_adcs {
+            f.write_str(" m2_adcs=")?;
+            list(f, &adcs, |f, v| write!(f, "{v}"))?;
+        }
+        Ok(())
     }
 }

@@ -1,10 +1,13 @@
 //! Inputs and the oracle shared by the I/O adapter tests.
 #![allow(dead_code)]
 
-use robowire::omnitiles::{Command, Decoder, Framing, Imu, Layout, Motor, Packet, Telemetry};
-use robowire::{Encode, FrameBuf, OwnedEvent};
+use robowire::omnitiles::{
+    Both, Command, Framing, Imu, Layout, Motor, Side, Telemetry, BOTH_BUFFER,
+};
+use robowire::{Encode, FrameBuf, OwnedEvent, OwnedFrame, Rejected, StreamDecoder};
 
-pub type Ev = OwnedEvent<Framing>;
+/// An event of an OmniTiles decoder of side `S`.
+pub type Ev<S = Both> = OwnedEvent<Framing<S>>;
 
 /// A small deterministic generator (xorshift), so failures reproduce.
 pub struct Rng(u64);
@@ -30,8 +33,8 @@ impl Rng {
     }
 }
 
-pub fn frame(packet: &Packet) -> Vec<u8> {
-    FrameBuf::<64>::encode(packet).unwrap().to_vec()
+pub fn frame<M: Encode>(message: &M) -> Vec<u8> {
+    FrameBuf::<64>::encode(message).unwrap().to_vec()
 }
 
 /// A 53-byte telemetry frame with values from `seed`.
@@ -74,13 +77,13 @@ pub fn commands() -> Vec<Command> {
 }
 
 /// A tile → host stream: 53-byte telemetry with garbage, false starts and a
-/// corrupted frame between frames. Returns the bytes and the packets that
-/// were sent intact.
-pub fn noisy_telemetry(rng: &mut Rng, frames: usize) -> (Vec<u8>, Vec<Packet>) {
+/// corrupted frame between frames. Returns the bytes and the telemetry that
+/// was sent intact.
+pub fn noisy_telemetry(rng: &mut Rng, frames: usize) -> (Vec<u8>, Vec<Telemetry>) {
     let mut bytes = Vec::new();
     let mut sent = Vec::new();
     for i in 0..frames {
-        let packet = Packet::Telemetry(telemetry(i as u16 * 97));
+        let packet = telemetry(i as u16 * 97);
         let mut f = frame(&packet);
         match rng.below(6) {
             0 => bytes.extend((0..rng.below(9)).map(|_| rng.byte())),
@@ -102,12 +105,12 @@ pub fn noisy_telemetry(rng: &mut Rng, frames: usize) -> (Vec<u8>, Vec<Packet>) {
 }
 
 /// A host → tile stream of commands with noise between them.
-pub fn noisy_commands(rng: &mut Rng, count: usize) -> (Vec<u8>, Vec<Packet>) {
+pub fn noisy_commands(rng: &mut Rng, count: usize) -> (Vec<u8>, Vec<Command>) {
     let all = commands();
     let mut bytes = Vec::new();
     let mut sent = Vec::new();
     for _ in 0..count {
-        let packet = Packet::Command(all[rng.below(all.len())]);
+        let packet = all[rng.below(all.len())];
         if rng.below(3) == 0 {
             bytes.extend((0..rng.below(5)).map(|_| rng.byte()));
         }
@@ -118,14 +121,14 @@ pub fn noisy_commands(rng: &mut Rng, count: usize) -> (Vec<u8>, Vec<Packet>) {
 }
 
 /// The oracle: the engine fed the whole input at once, then finished.
-pub fn engine_events(framing: Framing, input: &[u8]) -> Vec<Ev> {
-    let mut decoder = Decoder::new(framing);
-    let mut events: Vec<Ev> = decoder.feed(input).collect();
+pub fn engine_events<S: Side>(framing: Framing<S>, input: &[u8]) -> Vec<Ev<S>> {
+    let mut decoder = StreamDecoder::<_, BOTH_BUFFER>::new(framing);
+    let mut events: Vec<Ev<S>> = decoder.feed(input).collect();
     events.extend(decoder.flush());
     events
 }
 
-pub fn packets(events: &[Ev]) -> Vec<Packet> {
+pub fn packets<M: Copy, E>(events: &[Result<OwnedFrame<M>, Rejected<E>>]) -> Vec<M> {
     events
         .iter()
         .filter_map(|e| e.as_ref().ok().map(|f| f.message))

@@ -5,9 +5,9 @@
 #![allow(dead_code)]
 
 use robowire::omnitiles::{
-    Command, Decoder, Framing, Imu, Layout, Motor, Packet, Telemetry, NO_READING,
+    Command, Framing, Imu, Layout, Message, Motor, Side, Telemetry, BOTH_BUFFER, NO_READING,
 };
-use robowire::{FrameBuf, OwnedFrame};
+use robowire::{FrameBuf, OwnedFrame, StreamDecoder};
 
 /// A tiny xorshift generator: reproducible streams without a dependency.
 pub struct Rng(pub u64);
@@ -66,7 +66,7 @@ impl Corruption {
 pub struct Sent {
     pub offset: u64,
     pub len: usize,
-    pub packet: Packet,
+    pub packet: Message,
     /// Sent whole and unaltered: an ideal decoder accepts exactly these.
     pub intact: bool,
 }
@@ -134,13 +134,13 @@ pub fn generate(
     seed: u64,
     count: usize,
     corruption: Corruption,
-    mut next: impl FnMut(&mut Rng) -> Packet,
+    mut next: impl FnMut(&mut Rng) -> Message,
 ) -> Stream {
     let mut rng = Rng(seed);
     let (mut bytes, mut sent) = (Vec::new(), Vec::new());
     for _ in 0..count {
         let packet = next(&mut rng);
-        let mut frame = FrameBuf::<{ Packet::MAX_LEN }>::encode(&packet)
+        let mut frame = FrameBuf::<{ Message::MAX_LEN }>::encode(&packet)
             .unwrap()
             .to_vec();
         let mut intact = true;
@@ -196,18 +196,23 @@ pub fn telemetry_stream(
 ) -> Stream {
     generate(seed, count, corruption, |rng| {
         let layout = layouts[rng.below(layouts.len() as u64) as usize];
-        Packet::Telemetry(telemetry(rng, layout))
+        Message::Telemetry(telemetry(rng, layout))
     })
 }
 
 /// Mixed commands.
 pub fn command_stream(seed: u64, count: usize, corruption: Corruption) -> Stream {
-    generate(seed, count, corruption, |rng| Packet::Command(command(rng)))
+    generate(seed, count, corruption, |rng| {
+        Message::Command(command(rng))
+    })
 }
 
 /// Decode `bytes` fed in `chunk`-byte pieces (0: whole), then finish.
-pub fn decode(framing: Framing, bytes: &[u8], chunk: usize) -> Vec<OwnedFrame<Packet>> {
-    let mut decoder = Decoder::new(framing);
+pub fn decode<S>(framing: Framing<S>, bytes: &[u8], chunk: usize) -> Vec<OwnedFrame<Message>>
+where
+    S: Side<Message: Into<Message>>,
+{
+    let mut decoder = StreamDecoder::<_, BOTH_BUFFER>::new(framing);
     let mut frames = Vec::new();
     let chunk = if chunk == 0 {
         bytes.len().max(1)
@@ -215,10 +220,19 @@ pub fn decode(framing: Framing, bytes: &[u8], chunk: usize) -> Vec<OwnedFrame<Pa
         chunk
     };
     for piece in bytes.chunks(chunk) {
-        frames.extend(decoder.feed(piece).filter_map(Result::ok));
+        frames.extend(decoder.feed(piece).filter_map(Result::ok).map(widen));
     }
-    frames.extend(decoder.flush().filter_map(Result::ok));
+    frames.extend(decoder.flush().filter_map(Result::ok).map(widen));
     frames
+}
+
+/// A frame with its message as either direction's.
+fn widen<M: Into<Message>>(frame: OwnedFrame<M>) -> OwnedFrame<Message> {
+    OwnedFrame {
+        offset: frame.offset,
+        len: frame.len,
+        message: frame.message.into(),
+    }
 }
 
 /// How a decoder did against the ground truth.
@@ -236,7 +250,7 @@ pub struct Score {
     pub false_frames: usize,
 }
 
-pub fn score(stream: &Stream, decoded: &[OwnedFrame<Packet>]) -> Score {
+pub fn score(stream: &Stream, decoded: &[OwnedFrame<Message>]) -> Score {
     let mut intact = 0;
     let mut false_frames = 0;
     let mut sent = stream.sent.iter().filter(|s| s.intact).peekable();

@@ -1,16 +1,21 @@
-//! A firmware-shaped robowire example: an OmniTiles tile's command loop over
-//! a UART, with no heap and no `std`.
+//! A firmware-shaped robowire example: an OmniTiles tile that decodes its
+//! commands in the UART's receive interrupt, with no heap and no `std`.
 //!
-//! `robowire::io::embedded_io::PacketReader` decodes commands from any
-//! `embedded_io::Read` (the UART's receive half) into a 16-byte buffer on the
-//! stack; `PacketWriter` answers each command with a 53-byte telemetry frame
-//! on any `embedded_io::Write`. Bad checksums, unknown ids and line noise are
-//! skipped and counted by the decoder; a UART error (overrun, framing) is
-//! reported and the loop goes on.
+//! The USART2 interrupt hands each received byte to a command decoder with
+//! `push` and collects any further frames with `poll`; the decoder lives in a
+//! `static` behind a `critical_section::Mutex<RefCell<…>>`, which is how an
+//! interrupt handler and the main loop share state without `static mut`
+//! (a hard error to take references to in edition 2024). Bad checksums,
+//! unknown ids and line noise are skipped and counted by the decoder; a UART
+//! error (overrun, framing) is counted and decoding goes on. The main loop
+//! sleeps until a command asks for an answer, then writes a 53-byte telemetry
+//! frame through `embedded_io::Write`.
 //!
-//! The UART here is a minimal polled driver for the STM32F4 USART register
-//! block (USART2); clock, pin and baud-rate setup are left out. On real
-//! hardware use your HAL's UART: HALs implement `embedded_io::{Read, Write}`.
+//! The UART is a minimal driver for the STM32F4 USART register block (USART2)
+//! and `vectors.rs` is the part of the vector table a peripheral access crate
+//! would supply; clock, pin and baud-rate setup are left out. On real hardware
+//! use your PAC's `interrupt` and your HAL's UART (HALs implement
+//! `embedded_io::{Read, Write}`).
 //!
 //! ```sh
 //! cd examples/firmware && cargo build --release   # target thumbv7em-none-eabihf
@@ -19,61 +24,117 @@
 #![no_std]
 #![no_main]
 
+mod vectors;
+
+use core::cell::RefCell;
 use core::fmt;
 use core::panic::PanicInfo;
 use core::ptr::{read_volatile, write_volatile};
-use core::sync::atomic::{AtomicU16, AtomicU32, AtomicU8, Ordering::Relaxed};
+use core::sync::atomic::{AtomicBool, AtomicU8, AtomicU16, AtomicU32, Ordering::Relaxed};
 
-use cortex_m_rt::entry;
-use robowire::io::embedded_io::{PacketReader, PacketWriter};
-use robowire::omnitiles::{units, Command, Decoder, Framing, Layout, Packet, Telemetry};
+use cortex_m::peripheral::NVIC;
+use cortex_m_rt::{entry, interrupt};
+use critical_section::Mutex;
+use embedded_io::Write;
+use robowire::Encode;
+use robowire::omnitiles::{self, Command, DeviceDecoder, Layout, Telemetry, units};
 
-// The tile's state, shared with interrupt handlers that are not shown (the
-// PWM timer reads the duties and targets, the ADC's DMA interrupt writes the
-// positions). `#[no_mangle]` keeps them visible to those handlers and to a
-// debugger.
+use vectors::interrupt;
+
+/// The command decoder, fed by the USART2 interrupt one byte at a time.
+/// `const fn` construction: no initialisation code, no `Option`.
+static DECODER: Mutex<RefCell<DeviceDecoder>> =
+    Mutex::new(RefCell::new(omnitiles::device_decoder()));
+
+// The tile's state, shared with handlers that are not shown (the PWM timer
+// reads the duties and targets, the ADC's DMA interrupt writes the positions).
+// `#[unsafe(no_mangle)]` keeps them visible to a debugger.
 
 /// Duty levels (0..=50) that the PWM timer applies.
-#[no_mangle]
+#[unsafe(no_mangle)]
 static DUTY: [AtomicU8; 2] = [AtomicU8::new(0), AtomicU8::new(0)];
 /// Direction of each actuator: 0 brake, 1 extend, 2 retract.
-#[no_mangle]
+#[unsafe(no_mangle)]
 static DIRECTION: [AtomicU8; 2] = [AtomicU8::new(0), AtomicU8::new(0)];
 /// Set-position targets in raw ADC units, or `u16::MAX` for none.
-#[no_mangle]
+#[unsafe(no_mangle)]
 static TARGET: [AtomicU16; 2] = [AtomicU16::new(u16::MAX), AtomicU16::new(u16::MAX)];
 /// Positions (raw 0..=4095) kept up to date by the ADC's DMA interrupt.
-#[no_mangle]
+#[unsafe(no_mangle)]
 static POSITION: [AtomicU16; 2] = [AtomicU16::new(0), AtomicU16::new(0)];
 /// UART errors seen.
-#[no_mangle]
+#[unsafe(no_mangle)]
 static UART_ERRORS: AtomicU32 = AtomicU32::new(0);
+/// Set by the interrupt when a command arrived: the main loop answers it.
+static ANSWER: AtomicBool = AtomicBool::new(false);
+
+#[interrupt]
+fn USART2() {
+    let usart = Usart::usart2();
+    let status = usart.status();
+    if status & SR_ERRORS != 0 {
+        // Reading SR then DR clears the error flags; the byte is lost and the
+        // decoder resyncs by itself.
+        let _ = usart.read_data();
+        UART_ERRORS.fetch_add(1, Relaxed);
+        return;
+    }
+    if status & SR_RXNE == 0 {
+        return;
+    }
+    let byte = usart.read_data();
+    critical_section::with(|cs| {
+        let mut decoder = DECODER.borrow_ref_mut(cs);
+        if let Some(Ok(frame)) = decoder.push(byte) {
+            on_command(frame.message);
+        }
+        // A rejection can reveal frames among the bytes already buffered.
+        while let Some(event) = decoder.poll() {
+            if let Ok(frame) = event {
+                on_command(frame.message);
+            }
+        }
+    });
+}
+
+fn on_command(command: Command) {
+    obey(command);
+    ANSWER.store(true, Relaxed);
+}
 
 #[entry]
 fn main() -> ! {
-    let (uart_rx, uart_tx) = Usart::usart2().split();
-    let mut rx_buf = [0u8; 16];
-    let mut rx = PacketReader::new(uart_rx, Decoder::new(Framing::commands()), &mut rx_buf[..]);
-    let mut tx = PacketWriter::<_, { Telemetry::MAX_LEN }>::new(uart_tx);
+    let usart = Usart::usart2();
+    usart.listen_rx();
+    // SAFETY: the handler and everything it touches are ready; unmasking an
+    // interrupt cannot break a critical section in progress here.
+    unsafe { NVIC::unmask(interrupt::USART2) };
+    let mut uart_tx = usart.tx();
 
     loop {
-        match rx.read_message() {
-            Ok(Some(frame)) => {
-                if let Packet::Command(command) = frame.message {
-                    obey(command);
-                }
-                // Answer every command with the current state. A write can
-                // only fail on a UART error: nothing to do but go on.
-                let _ = tx.send(&telemetry());
-            }
-            // A UART has no end of input.
-            Ok(None) => {}
-            // Overrun or framing error: the decoder resyncs by itself.
-            Err(_) => {
-                UART_ERRORS.fetch_add(1, Relaxed);
+        if ANSWER.swap(false, Relaxed) {
+            // Answer with the current state. Encoding a well-formed telemetry
+            // value cannot fail; a write fails only on a UART error.
+            let mut frame = [0u8; Telemetry::MAX_LEN];
+            if let Ok(n) = telemetry().encode(&mut frame) {
+                let _ = uart_tx.write_all(&frame[..n]);
             }
         }
+        // Sleep until the next interrupt. Checking with interrupts masked
+        // closes the gap between the check and `wfi`: a pending interrupt
+        // still wakes the core, and runs once the critical section ends.
+        critical_section::with(|_| {
+            if !ANSWER.load(Relaxed) {
+                cortex_m::asm::wfi();
+            }
+        });
     }
+}
+
+/// Link-quality counters, for a debugger or a status command.
+#[allow(dead_code)]
+fn link_stats() -> robowire::Stats {
+    critical_section::with(|cs| DECODER.borrow_ref(cs).stats())
 }
 
 fn obey(command: Command) {
@@ -107,7 +168,7 @@ fn telemetry() -> Telemetry {
     }
 }
 
-/// A polled USART in the STM32F4 register layout.
+/// The STM32F4 USART2 register block (clock, pins and baud rate set up elsewhere).
 struct Usart {
     base: usize,
 }
@@ -121,51 +182,52 @@ const SR_RXNE: u32 = 1 << 5;
 const SR_TC: u32 = 1 << 6;
 const SR_TXE: u32 = 1 << 7;
 const SR_ERRORS: u32 = SR_PE | SR_FE | SR_NF | SR_ORE;
+/// Control register 1: receive-not-empty interrupt enable.
+const CR1_RXNEIE: u32 = 1 << 5;
 
 impl Usart {
-    fn usart2() -> Self {
+    const fn usart2() -> Self {
         Usart { base: 0x4000_4400 }
     }
 
-    fn split(self) -> (UsartRx, UsartTx) {
-        (UsartRx { base: self.base }, UsartTx { base: self.base })
+    fn status(&self) -> u32 {
+        // SAFETY: the USART's status register; reading it has no side effect.
+        unsafe { read_volatile(self.base as *const u32) }
+    }
+
+    fn read_data(&self) -> u8 {
+        // SAFETY: the data register; reading it takes the received byte.
+        unsafe { read_volatile((self.base + 4) as *const u32) as u8 }
+    }
+
+    /// Enable the receive interrupt (RXNEIE; it also fires on an overrun).
+    fn listen_rx(&self) {
+        let cr1 = (self.base + 0x0c) as *mut u32;
+        // SAFETY: control register 1; setting RXNEIE only enables the interrupt.
+        unsafe { write_volatile(cr1, read_volatile(cr1) | CR1_RXNEIE) }
+    }
+
+    fn write_data(&self, byte: u8) {
+        // SAFETY: the data register; writing it sends the byte.
+        unsafe { write_volatile((self.base + 4) as *mut u32, u32::from(byte)) }
+    }
+
+    /// The transmit half.
+    const fn tx(self) -> UsartTx {
+        UsartTx(self)
     }
 }
 
-fn sr(base: usize) -> u32 {
-    // SAFETY: the USART's status register; reading it has no side effect.
-    unsafe { read_volatile(base as *const u32) }
-}
+/// The transmit half, polled.
+struct UsartTx(Usart);
 
-fn read_dr(base: usize) -> u8 {
-    // SAFETY: the data register; reading it takes the received byte.
-    unsafe { read_volatile((base + 4) as *const u32) as u8 }
-}
-
-fn write_dr(base: usize, byte: u8) {
-    // SAFETY: the data register; writing it sends the byte.
-    unsafe { write_volatile((base + 4) as *mut u32, u32::from(byte)) }
-}
-
-/// The receive half.
-struct UsartRx {
-    base: usize,
-}
-
-/// The transmit half.
-struct UsartTx {
-    base: usize,
-}
-
-/// A receive error flagged by the USART.
+/// A transmit error (this polled driver has none, but the trait wants a type).
 #[derive(Debug, Clone, Copy)]
-struct UsartError {
-    status: u32,
-}
+enum UsartError {}
 
 impl fmt::Display for UsartError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "USART error, status {:#x}", self.status)
+    fn fmt(&self, _: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {}
     }
 }
 
@@ -173,54 +235,25 @@ impl core::error::Error for UsartError {}
 
 impl embedded_io::Error for UsartError {
     fn kind(&self) -> embedded_io::ErrorKind {
-        embedded_io::ErrorKind::Other
+        match *self {}
     }
-}
-
-impl embedded_io::ErrorType for UsartRx {
-    type Error = UsartError;
 }
 
 impl embedded_io::ErrorType for UsartTx {
     type Error = UsartError;
 }
 
-impl embedded_io::Read for UsartRx {
-    /// Block until a byte arrives, then take every byte that is ready.
-    fn read(&mut self, buf: &mut [u8]) -> Result<usize, UsartError> {
-        let mut n = 0;
-        while n < buf.len() {
-            let status = sr(self.base);
-            if status & SR_ERRORS != 0 {
-                if n > 0 {
-                    break; // report it on the next read
-                }
-                // Reading SR then DR clears the error flags.
-                let _ = read_dr(self.base);
-                return Err(UsartError { status });
-            }
-            if status & SR_RXNE != 0 {
-                buf[n] = read_dr(self.base);
-                n += 1;
-            } else if n > 0 {
-                break;
-            }
-        }
-        Ok(n)
-    }
-}
-
 impl embedded_io::Write for UsartTx {
     fn write(&mut self, buf: &[u8]) -> Result<usize, UsartError> {
         for &byte in buf {
-            while sr(self.base) & SR_TXE == 0 {}
-            write_dr(self.base, byte);
+            while self.0.status() & SR_TXE == 0 {}
+            self.0.write_data(byte);
         }
         Ok(buf.len())
     }
 
     fn flush(&mut self) -> Result<(), UsartError> {
-        while sr(self.base) & SR_TC == 0 {}
+        while self.0.status() & SR_TC == 0 {}
         Ok(())
     }
 }

@@ -193,6 +193,7 @@ pub struct Decoded {
 /// the stream; every event goes to `printer`. An input failure stops the
 /// decode (without finishing the stream: the input did not end) and comes
 /// back in [`Decoded::failure`]; an output failure is the error.
+#[allow(dead_code)] // no protocol prints through `Protocol` any more but Telemetrix's own loop
 pub fn decode_stream<P: Protocol, const N: usize>(
     mut decoder: StreamDecoder<P::Framing, N>,
     source: &mut dyn ByteSource,

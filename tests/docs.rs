@@ -1,0 +1,277 @@
+//! The documentation's own checks: the README stays a front page, no code block
+//! hides lines, every relative link and anchor resolves, every guide with Rust
+//! examples is compiled as a doctest, the feature tables list every feature,
+//! and the interrupt handler shown in docs/embedded.md is the firmware example's.
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn read(path: &Path) -> String {
+    fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// README.md and every docs/*.md, by path relative to the crate root.
+fn markdown_files() -> BTreeMap<PathBuf, String> {
+    let mut files = BTreeMap::new();
+    files.insert(PathBuf::from("README.md"), read(&root().join("README.md")));
+    for entry in fs::read_dir(root().join("docs")).expect("docs/ exists") {
+        let path = entry.expect("a directory entry").path();
+        if path.extension().is_some_and(|e| e == "md") {
+            let relative = path
+                .strip_prefix(root())
+                .expect("under the root")
+                .to_path_buf();
+            files.insert(relative, read(&path));
+        }
+    }
+    files
+}
+
+/// A fenced code block: its info string and its lines.
+struct Block<'a> {
+    info: &'a str,
+    lines: Vec<&'a str>,
+}
+
+fn code_blocks(markdown: &str) -> Vec<Block<'_>> {
+    let mut blocks = Vec::new();
+    let mut current: Option<Block<'_>> = None;
+    for line in markdown.lines() {
+        match (&mut current, line.strip_prefix("```")) {
+            (None, Some(info)) => {
+                current = Some(Block {
+                    info: info.trim(),
+                    lines: Vec::new(),
+                })
+            }
+            (Some(_), Some(_)) => blocks.extend(current.take()),
+            (Some(block), None) => block.lines.push(line),
+            (None, None) => {}
+        }
+    }
+    assert!(current.is_none(), "an unclosed code block");
+    blocks
+}
+
+/// Whether rustdoc treats a block with this info string as Rust.
+fn is_rust(info: &str) -> bool {
+    info.is_empty() || info.split(',').any(|word| word.trim() == "rust")
+}
+
+/// The text outside code blocks.
+fn prose(markdown: &str) -> String {
+    let mut out = String::new();
+    let mut in_code = false;
+    for line in markdown.lines() {
+        if line.starts_with("```") {
+            in_code = !in_code;
+        } else if !in_code {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// GitHub's anchor for a heading: lower case, punctuation dropped, spaces to
+/// hyphens; repeated headings get `-1`, `-2`, ….
+fn anchors(markdown: &str) -> Vec<String> {
+    let mut seen: BTreeMap<String, usize> = BTreeMap::new();
+    let mut out = Vec::new();
+    for line in prose(markdown).lines() {
+        let Some(title) = line.strip_prefix('#') else {
+            continue;
+        };
+        let title = title.trim_start_matches('#').trim();
+        let slug: String = title
+            .to_lowercase()
+            .chars()
+            .filter(|c| c.is_alphanumeric() || *c == ' ' || *c == '-' || *c == '_')
+            .map(|c| if c == ' ' { '-' } else { c })
+            .collect();
+        let n = seen.entry(slug.clone()).or_insert(0);
+        out.push(if *n == 0 {
+            slug.clone()
+        } else {
+            format!("{slug}-{n}")
+        });
+        *n += 1;
+    }
+    out
+}
+
+/// The targets of inline links `[text](target)` outside code blocks.
+fn links(markdown: &str) -> Vec<String> {
+    let text = prose(markdown);
+    let mut out = Vec::new();
+    let mut rest = text.as_str();
+    while let Some(i) = rest.find("](") {
+        rest = &rest[i + 2..];
+        if let Some(end) = rest.find(')') {
+            out.push(rest[..end].to_string());
+            rest = &rest[end..];
+        }
+    }
+    out
+}
+
+#[test]
+fn the_readme_is_a_front_page() {
+    let readme = read(&root().join("README.md"));
+    let lines = readme.lines().count();
+    assert!(
+        lines <= 250,
+        "README.md has {lines} lines; the details belong in docs/"
+    );
+    for section in [
+        "cargo add robowire",
+        "## OmniTiles",
+        "## Pixy2",
+        "## Telemetrix4RpiPico",
+    ] {
+        assert!(readme.contains(section), "README.md lacks {section:?}");
+    }
+    for guide in [
+        "docs/cli.md",
+        "docs/embedded.md",
+        "docs/performance.md",
+        "docs/robustness.md",
+    ] {
+        assert!(
+            readme.contains(&format!("]({guide})")),
+            "README.md does not link {guide}"
+        );
+    }
+}
+
+#[test]
+fn no_code_block_hides_lines() {
+    for (path, text) in markdown_files() {
+        for block in code_blocks(&text).into_iter().filter(|b| is_rust(b.info)) {
+            for line in &block.lines {
+                let trimmed = line.trim_start();
+                // `#[attr]` and `#![attr]` are Rust; `# x` and a lone `#` are hidden lines.
+                let hidden = trimmed == "#" || trimmed.starts_with("# ");
+                assert!(
+                    !hidden,
+                    "{}: a hidden doctest line: {line:?}",
+                    path.display()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn every_relative_link_and_anchor_resolves() {
+    let files = markdown_files();
+    for (path, text) in &files {
+        let dir = path.parent().unwrap_or(Path::new(""));
+        for link in links(text) {
+            if link.starts_with("http://") || link.starts_with("https://") {
+                continue;
+            }
+            let (file, anchor) = match link.split_once('#') {
+                Some((file, anchor)) => (file, Some(anchor)),
+                None => (link.as_str(), None),
+            };
+            let target = if file.is_empty() {
+                path.clone()
+            } else {
+                dir.join(file)
+            };
+            let on_disk = root().join(&target);
+            assert!(
+                on_disk.exists(),
+                "{}: the link {link:?} leads nowhere",
+                path.display()
+            );
+            if let Some(anchor) = anchor {
+                let target_text = read(&on_disk);
+                assert!(
+                    anchors(&target_text).iter().any(|a| a == anchor),
+                    "{}: no heading in {} has the anchor #{anchor}",
+                    path.display(),
+                    target.display()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn every_page_with_rust_examples_is_a_doctest() {
+    let lib = read(&root().join("src/lib.rs"));
+    for (path, text) in markdown_files() {
+        let compiled = code_blocks(&text)
+            .iter()
+            .any(|b| is_rust(b.info) && !b.info.contains("ignore"));
+        if compiled {
+            let include = format!("#[doc = include_str!(\"../{}\")]", path.display());
+            assert!(
+                lib.contains(&include),
+                "src/lib.rs does not compile {}",
+                path.display()
+            );
+        }
+    }
+}
+
+#[test]
+fn the_feature_tables_list_every_feature() {
+    let manifest = read(&root().join("Cargo.toml"));
+    let features = manifest
+        .split("[features]")
+        .nth(1)
+        .expect("a [features] table")
+        .split("\n[")
+        .next()
+        .unwrap_or_default();
+    let names: Vec<&str> = features
+        .lines()
+        .filter_map(|line| line.split_once(" = ").map(|(name, _)| name.trim()))
+        .filter(|name| *name != "default")
+        .collect();
+    assert!(names.len() >= 7, "features found: {names:?}");
+    let readme = read(&root().join("README.md"));
+    let lib = read(&root().join("src/lib.rs"));
+    for name in names {
+        let row = format!("| `{name}` |");
+        assert!(
+            readme.contains(&row),
+            "README.md's feature table lacks `{name}`"
+        );
+        assert!(
+            lib.contains(&format!("//! {row}")),
+            "the crate docs' feature table lacks `{name}`"
+        );
+    }
+}
+
+#[test]
+fn the_embedded_guide_shows_the_firmware_example() {
+    let guide = read(&root().join("docs/embedded.md"));
+    let (_, after) = guide
+        .split_once("<!-- firmware -->")
+        .expect("the firmware marker");
+    let block = &code_blocks(after)[0];
+    let firmware = read(&root().join("examples/firmware/src/main.rs"));
+    let mut rest = firmware.lines().map(str::trim);
+    for line in block
+        .lines
+        .iter()
+        .map(|l| l.trim())
+        .filter(|l| !l.is_empty())
+    {
+        assert!(
+            rest.any(|f| f == line),
+            "docs/embedded.md shows a line that examples/firmware/src/main.rs does not have \
+             (or not in this order): {line:?}"
+        );
+    }
+}
