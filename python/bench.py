@@ -20,9 +20,10 @@ same dicts (the CLI's JSON-lines schema):
 Both check what robowire checks on a clean stream (start byte, id, length,
 checksum) and keep a cut frame across chunks; neither has robowire's resync
 verification. The figures are the best of ``--repeat`` runs (wall clock),
-with the CPU time of that run. The last line per protocol is robowire
-decoding without building any Python object (``_count``): the difference is
-the cost of the dicts.
+with the CPU time of that run. Two more lines per protocol: robowire with
+``lazy=True`` (items that build their dict only when read; none is read
+here), and robowire decoding without building any Python object
+(``_count``): the difference to the first line is the cost of the dicts.
 
 Run from the repository root after installing the package::
 
@@ -308,14 +309,14 @@ def main() -> int:
         (
             "OmniTiles 53-byte telemetry",
             omnitiles_stream(args.frames),
-            lambda: omnitiles.Decoder(source="tile", layouts="ble53"),
+            lambda lazy=False: omnitiles.Decoder(source="tile", layouts="ble53", lazy=lazy),
             PlainOmniTiles,
             TunedOmniTiles,
         ),
         (
             "Telemetrix reports",
             telemetrix_stream(args.frames),
-            lambda: telemetrix.Decoder(source="pico"),
+            lambda lazy=False: telemetrix.Decoder(source="pico", lazy=lazy),
             PlainTelemetrix,
             TunedTelemetrix,
         ),
@@ -329,6 +330,7 @@ def main() -> int:
                 ok = False
         runs = [
             ("robowire", timed(lambda: ours().feed, stream, args.repeat)),
+            ("robowire, lazy=True", timed(lambda: ours(lazy=True).feed, stream, args.repeat)),
             ("plain Python", timed(lambda: plain().feed, stream, args.repeat)),
             ("tuned Python", timed(lambda: tuned().feed, stream, args.repeat)),
             ("robowire, no items", timed(lambda: ours()._count, stream, args.repeat, count=True)),
@@ -343,8 +345,9 @@ def main() -> int:
                 f"  {label:19} {frames / wall:>12,.0f} frames/s {mb / wall:8.1f} MB/s"
                 f"  (wall {wall:.3f} s, CPU {cpu:.3f} s)"
             )
-        rw, plain_run, tuned_run, bare = (r[1][1] for r in runs)
-        print(f"  robowire / plain Python: {plain_run / rw:.1f}x; robowire / tuned Python: {tuned_run / rw:.1f}x")
+        rw, lazy, plain_run, tuned_run, bare = (r[1][1] for r in runs)
+        print(f"  robowire / plain Python: {plain_run / rw:.1f}x dicts, {plain_run / lazy:.1f}x lazy")
+        print(f"  robowire / tuned Python: {tuned_run / rw:.1f}x dicts, {tuned_run / lazy:.1f}x lazy")
         print(f"  building the dicts takes {1 - bare / rw:.0%} of robowire's time")
     return 0 if ok else 1
 

@@ -3,60 +3,89 @@
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList, PyString};
-use robowire::omnitiles::{Decoder, Framing, Layout, Layouts, Packet};
+use robowire::omnitiles::{
+    Both, DatagramDecoder, Device, Framing, Host, Layouts, Message, Side, BOTH_BUFFER,
+    DEVICE_BUFFER, HOST_BUFFER,
+};
+use robowire::{Stats, StreamDecoder};
 
 use crate::decoder::PyStreamDecoder;
 use crate::engine::{
-    append, bad_choice, encode_frame, encode_with, stats_dict, with_bytes, Items, Stream,
+    append, bad_choice, encode_frame, encode_with, stats_dict, with_bytes, Engine, Items, Stream,
 };
 
 const SOURCES: &[&str] = &["tile", "host", "any"];
 
-/// The layouts option: `None`, a comma-separated string or a sequence of names.
+/// The layouts option: `None`, a comma-separated string or a sequence of
+/// names, read by the library's `Layouts::from_str`.
 fn layouts_of(layouts: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Layouts>> {
     let Some(layouts) = layouts else {
         return Ok(None);
     };
-    let names: Vec<String> = if let Ok(text) = layouts.cast::<PyString>() {
-        text.to_cow()?.split(',').map(str::to_owned).collect()
+    let text = if let Ok(text) = layouts.cast::<PyString>() {
+        text.to_cow()?.into_owned()
     } else {
-        layouts.extract()?
+        layouts.extract::<Vec<String>>()?.join(",")
     };
-    let mut set = Layouts::NONE;
-    for name in &names {
-        let name = name.trim();
-        if name == "auto" {
-            set = Layouts::DOCUMENTED.iter().fold(set, Layouts::with);
-            continue;
-        }
-        let layout = Layout::from_name(name).ok_or_else(|| {
-            bad_choice(
-                "a layout",
-                name,
-                &["pos7", "uwb15", "uwbtof17", "ble53", "spi45", "auto"],
-            )
-        })?;
-        set = set.with(layout);
-    }
+    let set: Layouts = text
+        .parse()
+        .map_err(|e| PyValueError::new_err(format!("layouts={text:?}: {e}")))?;
     if set.is_empty() {
-        return Err(PyValueError::new_err(
-            "layouts must name at least one layout",
-        ));
+        return Err(PyValueError::new_err(format!(
+            "layouts={text:?}: name at least one layout"
+        )));
     }
     Ok(Some(set))
 }
 
-/// The framing for `source` and `layouts`.
-fn framing(source: &str, layouts: Option<&Bound<'_, PyAny>>) -> PyResult<Framing> {
+/// What a source decodes, as the tool's `--from` and `--layout` choose it.
+enum Choice {
+    Tile(Framing<Host>),
+    Host(Framing<Device>),
+    Any(Framing<Both>),
+}
+
+fn choose(source: &str, layouts: Option<&Bound<'_, PyAny>>) -> PyResult<Choice> {
     let layouts = layouts_of(layouts)?;
-    match (source, layouts) {
-        ("tile", layouts) => Ok(Framing::telemetry(layouts.unwrap_or_default())),
-        ("any", layouts) => Ok(Framing::any(layouts.unwrap_or_default())),
-        ("host", None) => Ok(Framing::commands()),
-        ("host", Some(_)) => Err(PyValueError::new_err(
-            "layouts apply to telemetry: not with source=\"host\"",
+    match source {
+        "tile" => Ok(Choice::Tile(
+            Framing::new().with_layouts(layouts.unwrap_or_default()),
         )),
-        (other, _) => Err(bad_choice("source", other, SOURCES)),
+        "any" => Ok(Choice::Any(
+            Framing::new().with_layouts(layouts.unwrap_or_default()),
+        )),
+        "host" if layouts.is_none() => Ok(Choice::Host(Framing::new())),
+        "host" => Err(PyValueError::new_err(
+            "layouts select telemetry layouts, which source=\"host\" does not accept",
+        )),
+        other => Err(bad_choice("source", other, SOURCES)),
+    }
+}
+
+/// A datagram decoder of any side.
+trait Datagrams: Send + Sync {
+    fn decode(&mut self, datagram: &[u8], items: Items, out: &Bound<'_, PyList>) -> PyResult<()>;
+    fn stats(&self) -> Stats;
+}
+
+impl<S> Datagrams for DatagramDecoder<S>
+where
+    S: Side + Send + Sync,
+    S::Message: serde::Serialize + Send + Sync,
+    Framing<S>: robowire::FrameRules<Owned = S::Message, Error = robowire::omnitiles::Error>,
+{
+    fn decode(&mut self, datagram: &[u8], items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
+        let mut result = Ok(());
+        for event in DatagramDecoder::decode(self, datagram) {
+            if result.is_ok() {
+                result = append::<Framing<S>>(out, event, items);
+            }
+        }
+        result
+    }
+
+    fn stats(&self) -> Stats {
+        DatagramDecoder::stats(self)
     }
 }
 
@@ -75,7 +104,7 @@ fn describe(class: &str, source: &str, layouts: Option<&Bound<'_, PyAny>>, items
     )
 }
 
-/// Decoder(source="any", layouts=None, errors=False)
+/// Decoder(source="any", layouts=None, errors=False, lazy=False)
 /// --
 ///
 /// The OmniTiles stream decoder (a :class:`robowire.StreamDecoder`): feed it
@@ -108,8 +137,11 @@ impl OmniDecoder {
         errors: bool,
         lazy: bool,
     ) -> PyResult<PyClassInitializer<Self>> {
-        let framing = framing(source, layouts)?;
-        let engine = Stream::boxed(Decoder::new(framing));
+        let engine: Box<dyn Engine> = match choose(source, layouts)? {
+            Choice::Tile(f) => Stream::boxed(StreamDecoder::<_, HOST_BUFFER>::new(f)),
+            Choice::Host(f) => Stream::boxed(StreamDecoder::<_, DEVICE_BUFFER>::new(f)),
+            Choice::Any(f) => Stream::boxed(StreamDecoder::<_, BOTH_BUFFER>::new(f)),
+        };
         let items = Items { errors, lazy };
         let repr = describe("Decoder", source, layouts, items);
         let base = PyStreamDecoder::new(engine, items, repr);
@@ -117,7 +149,7 @@ impl OmniDecoder {
     }
 }
 
-/// DatagramDecoder(source="tile", layouts=None, errors=False)
+/// DatagramDecoder(source="any", layouts=None, errors=False, lazy=False)
 /// --
 ///
 /// Decodes datagrams whose boundaries the transport keeps: one BLE
@@ -133,7 +165,7 @@ impl OmniDecoder {
 /// [{'offset': 0, 'len': 3, 'type': 'm1_brake'}, {'offset': 3, 'len': 3, 'type': 'm2_brake'}]
 #[pyclass(module = "robowire.omnitiles", name = "DatagramDecoder")]
 pub struct OmniDatagramDecoder {
-    inner: robowire::omnitiles::DatagramDecoder,
+    inner: Box<dyn Datagrams>,
     items: Items,
     repr: String,
 }
@@ -141,17 +173,21 @@ pub struct OmniDatagramDecoder {
 #[pymethods]
 impl OmniDatagramDecoder {
     #[new]
-    #[pyo3(signature = (source = "tile", layouts = None, errors = false, lazy = false))]
+    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false))]
     fn new(
         source: &str,
         layouts: Option<&Bound<'_, PyAny>>,
         errors: bool,
         lazy: bool,
     ) -> PyResult<Self> {
-        let framing = framing(source, layouts)?;
+        let inner: Box<dyn Datagrams> = match choose(source, layouts)? {
+            Choice::Tile(f) => Box::new(DatagramDecoder::new(f)),
+            Choice::Host(f) => Box::new(DatagramDecoder::new(f)),
+            Choice::Any(f) => Box::new(DatagramDecoder::new(f)),
+        };
         let items = Items { errors, lazy };
         Ok(Self {
-            inner: robowire::omnitiles::DatagramDecoder::new(framing),
+            inner,
             items,
             repr: describe("DatagramDecoder", source, layouts, items),
         })
@@ -165,15 +201,7 @@ impl OmniDatagramDecoder {
     fn decode<'py>(&mut self, datagram: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(datagram.py());
         let items = self.items;
-        with_bytes(datagram, |bytes| {
-            let mut result = Ok(());
-            for event in self.inner.decode(bytes) {
-                if result.is_ok() {
-                    result = append::<Framing>(&out, event, items);
-                }
-            }
-            result
-        })??;
+        with_bytes(datagram, |bytes| self.inner.decode(bytes, items, &out))??;
         Ok(out)
     }
 
@@ -213,7 +241,7 @@ impl OmniDatagramDecoder {
 /// 'a5 30 c8 f8'
 #[pyfunction]
 fn encode<'py>(message: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyBytes>> {
-    encode_with(message, |message: &Packet| encode_frame(message))
+    encode_with(message, encode_frame::<Message>)
 }
 
 /// `robowire.omnitiles`.

