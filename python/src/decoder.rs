@@ -40,21 +40,16 @@ impl PyStreamDecoder {
 
 #[pymethods]
 impl PyStreamDecoder {
-    /// feed(data, /)
-    /// --
-    ///
     /// Decode the next chunk of the stream (``bytes``, ``bytearray`` or
     /// ``memoryview``) and return the items completed by it, in stream order.
     /// A frame cut by the end of the chunk is kept and completed by the next.
+    #[pyo3(signature = (data, /))]
     fn feed<'py>(&mut self, data: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(data.py());
         with_bytes(data, |bytes| self.engine.feed(bytes, self.items, &out))??;
         Ok(out)
     }
 
-    /// finish()
-    /// --
-    ///
     /// Signal the end of the input and return the items that resolves: a
     /// buffered frame that is complete, or (with ``errors=True``) the
     /// rejection of one cut short. The decoder is then empty and can take a new
@@ -65,19 +60,14 @@ impl PyStreamDecoder {
         Ok(out)
     }
 
-    /// _count(data, /)
-    /// --
-    ///
     /// Decode ``data`` as :meth:`feed` does but build no items: the number of
     /// frames decoded. For benchmarks (the cost of the items is the
     /// difference).
+    #[pyo3(signature = (data, /))]
     fn _count(&mut self, data: &Bound<'_, PyAny>) -> PyResult<usize> {
         with_bytes(data, |bytes| self.engine.count(bytes))
     }
 
-    /// clear()
-    /// --
-    ///
     /// Forget a buffered partial frame (its bytes count as skipped), for
     /// example after the link was reopened. Offsets and counters carry on.
     fn clear(&mut self) {

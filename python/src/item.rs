@@ -79,19 +79,13 @@ impl Item {
         self.event.offset()
     }
 
-    /// to_dict()
-    /// --
-    ///
     /// The item as a new plain dict in the JSON-lines schema.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         self.dict(py)?.copy()
     }
 
-    /// get(key, default=None, /)
-    /// --
-    ///
     /// The value of ``key``, or ``default`` where the item has no such key.
-    #[pyo3(signature = (key, default = None))]
+    #[pyo3(signature = (key, default = None, /))]
     fn get<'py>(
         &self,
         py: Python<'py>,
@@ -104,25 +98,16 @@ impl Item {
         })
     }
 
-    /// keys()
-    /// --
-    ///
     /// The keys, in schema order (``offset`` first).
     fn keys<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.dict(py)?.call_method0("keys")
     }
 
-    /// values()
-    /// --
-    ///
     /// The values, in schema order.
     fn values<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.dict(py)?.call_method0("values")
     }
 
-    /// items()
-    /// --
-    ///
     /// The ``(key, value)`` pairs, in schema order.
     fn items<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.dict(py)?.call_method0("items")

@@ -104,9 +104,6 @@ fn describe(class: &str, source: &str, layouts: Option<&Bound<'_, PyAny>>, items
     )
 }
 
-/// Decoder(source="any", layouts=None, errors=False, lazy=False)
-/// --
-///
 /// The OmniTiles stream decoder (a :class:`robowire.StreamDecoder`): feed it
 /// the bytes of a serial link or a capture in chunks of any size.
 ///
@@ -116,7 +113,9 @@ fn describe(class: &str, source: &str, layouts: Option<&Bound<'_, PyAny>>, items
 /// list or a comma-separated string of ``"pos7"``, ``"uwb15"``,
 /// ``"uwbtof17"``, ``"ble53"``, ``"spi45"`` and ``"auto"`` (the four the SDK
 /// documents, the default); name the one layout you know for the fastest,
-/// surest decoding. ``errors=True`` returns rejected candidates as items.
+/// surest decoding. ``errors=True`` returns rejected candidates as items;
+/// ``lazy=True`` returns :class:`robowire.Item` mappings that build their
+/// dict only when read.
 ///
 /// >>> from robowire import omnitiles
 /// >>> d = omnitiles.Decoder(source="host")
@@ -149,9 +148,6 @@ impl OmniDecoder {
     }
 }
 
-/// DatagramDecoder(source="any", layouts=None, errors=False, lazy=False)
-/// --
-///
 /// Decodes datagrams whose boundaries the transport keeps: one BLE
 /// notification (or write, or SPI buffer) per call to :meth:`decode`. A
 /// datagram that is one telemetry frame (possibly zero-padded) is read by its
@@ -193,11 +189,9 @@ impl OmniDatagramDecoder {
         })
     }
 
-    /// decode(datagram, /)
-    /// --
-    ///
     /// The items of one whole datagram (``bytes``, ``bytearray`` or
     /// ``memoryview``), in order.
+    #[pyo3(signature = (datagram, /))]
     fn decode<'py>(&mut self, datagram: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(datagram.py());
         let items = self.items;
@@ -229,9 +223,6 @@ impl OmniDatagramDecoder {
     }
 }
 
-/// encode(message, /)
-/// --
-///
 /// The frame of one message, a dict in the JSON-lines schema (as the decoders
 /// return it; ``offset`` and ``len`` are ignored). Raises ``ValueError``
 /// naming the field and its range when the message is not valid.
@@ -240,6 +231,7 @@ impl OmniDatagramDecoder {
 /// >>> omnitiles.encode({"type": "m1_extend", "speed": 200}).hex(" ")
 /// 'a5 30 c8 f8'
 #[pyfunction]
+#[pyo3(signature = (message, /))]
 fn encode<'py>(message: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyBytes>> {
     encode_with(message, encode_frame::<Message>)
 }

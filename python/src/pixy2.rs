@@ -37,9 +37,6 @@ fn engine(source: &str, checksum_only: bool) -> PyResult<Box<dyn Engine>> {
     })
 }
 
-/// Decoder(source="any", checksum_only=False, errors=False, lazy=False)
-/// --
-///
 /// The Pixy2 stream decoder (a :class:`robowire.StreamDecoder`): feed it the
 /// bytes of a serial link or a capture in chunks of any size.
 ///
@@ -84,9 +81,6 @@ impl Pixy2Decoder {
     }
 }
 
-/// encode(message, /)
-/// --
-///
 /// The frame of one request or response, a dict in the JSON-lines schema (as
 /// the decoder returns it; ``offset`` and ``len`` are ignored). ``checksum``
 /// picks the frame form (``True``: ``af c1``; absent: the form the message
@@ -97,6 +91,7 @@ impl Pixy2Decoder {
 /// >>> pixy2.encode({"type": "set_servos", "pan": 500, "tilt": 500}).hex(" ")
 /// 'ae c1 12 04 f4 01 f4 01'
 #[pyfunction]
+#[pyo3(signature = (message, /))]
 fn encode<'py>(message: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyBytes>> {
     encode_with(message, encode_frame::<Envelope<MessageBuf>>)
 }
