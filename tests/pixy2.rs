@@ -3,7 +3,7 @@
 //! host loop against a simulated device.
 
 use robowire::pixy2::{
-    self, packet_type as ty, Both, Barcode, Block, BlocksBuf, ChangeProg, Device, DeviceError,
+    self, packet_type as ty, Barcode, Block, BlocksBuf, Both, ChangeProg, Device, DeviceError,
     Error, FeaturesBuf, Form, Framing, GetBlocks, GetFeatures, GetFps, GetResolution, GetRgb,
     GetVersion, Host, Intersection, IntersectionLine, Malformed, Message, MessageBuf, Packet,
     PairError, ProgName, ProgSwitch, Query, Request, Resolution, Response, ResponseBuf,

@@ -4,7 +4,7 @@
 
 use proptest::prelude::*;
 use robowire::pixy2::{
-    self, Both, Barcode, Block, BlocksBuf, ChangeProg, DeviceError, Features, FeaturesBuf,
+    self, Barcode, Block, BlocksBuf, Both, ChangeProg, DeviceError, Features, FeaturesBuf,
     FirmwareType, Form, Framing, GetBlocks, GetFeatures, GetFps, GetResolution, GetRgb, GetVersion,
     Host, Intersection, IntersectionLine, MessageBuf, Packet, ProgName, Request, Resolution,
     ResponseBuf, ReverseVector, Section, SetCameraBrightness, SetDefaultTurn, SetLamp, SetLed,
