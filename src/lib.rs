@@ -7,6 +7,11 @@
 #[cfg(feature = "tokio-util-07")]
 extern crate std;
 
+// The serde forms read JSON through an owned value; decoders and encoders
+// never allocate.
+#[cfg(feature = "serde")]
+extern crate alloc;
+
 pub mod encode;
 pub mod io;
 pub mod omnitiles;

@@ -379,7 +379,12 @@ impl From<CommandBuf> for MessageBuf {
 
 impl From<ReportBuf> for MessageBuf {
     fn from(report: ReportBuf) -> Self {
-        Self::with(report.frame(), report.dialect, report.lenient, Direction::Report)
+        Self::with(
+            report.frame(),
+            report.dialect,
+            report.lenient,
+            Direction::Report,
+        )
     }
 }
 

@@ -6,12 +6,11 @@ use super::list::List;
 use super::module::{ModuleNew, MODULE_INIT_MAX};
 use super::sensor::SensorNew;
 use super::wire::{
-    analog_pin_ok, command_id, split_frame, Reader, Writer, COMMAND_PAYLOAD_MAX,
-    MAX_COMMAND_FRAME, MAX_COMMAND_LEN, PIN_COUNT,
+    analog_pin_ok, command_id, split_frame, Reader, Writer, COMMAND_PAYLOAD_MAX, MAX_COMMAND_FRAME,
+    MAX_COMMAND_LEN, PIN_COUNT,
 };
 use crate::encode::check_room;
 use crate::{Encode, EncodeError};
-
 
 use command_id as id;
 
@@ -496,7 +495,6 @@ impl Command<'_> {
             Command::BootloaderReset => id::BOOTLOADER_RESET,
         }
     }
-
 }
 
 impl<'a> Command<'a> {
@@ -822,7 +820,6 @@ impl Encode for Command<'_> {
         self.encode_in(Dialect::Mirte13, out)
     }
 }
-
 
 /// Parse one complete command frame (`LEN` byte first) for `dialect`. This is
 /// the one definition of a valid command: the decoder accepts exactly what it

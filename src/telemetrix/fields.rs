@@ -5,8 +5,8 @@
 use core::fmt;
 
 use super::buf::{CommandBuf, Message, MessageBuf, ReportBuf};
-use super::list::List;
 use super::command::{Command, ModifyReporting, PinMode, PwmPin, Rgb};
+use super::list::List;
 use super::module::{
     HiwonderCommand, ModuleCommand, ModuleInit, ModuleNew, ModuleReport, ModuleType,
     Pca9685Channel, Pca9685Command, RelayCommand, ServoMove, ServoPosition, ServoPositions,

@@ -8,7 +8,6 @@ use super::wire::{analog_pin_ok, report_id, split_frame, Reader, Writer, MAX_REP
 use crate::encode::check_room;
 use crate::{Encode, EncodeError};
 
-
 use report_id as id;
 
 /// Whether `dialect` defines report `id` (and robowire covers it there).
@@ -477,7 +476,6 @@ impl Report<'_> {
             Report::Unknown { id, .. } => *id,
         }
     }
-
 }
 
 impl Report<'_> {
