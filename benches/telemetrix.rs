@@ -3,7 +3,7 @@
 //! byte of the same buffer.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
-use robowire::telemetrix::{Report, ReportDecoder, ReportFraming, Sonar};
+use robowire::telemetrix::{Framing, Host, HostDecoder, Report, Sonar};
 use robowire::Encode;
 
 /// Tiny xorshift generator: seeded, reproducible, no dependency.
@@ -55,7 +55,7 @@ fn reports() -> Vec<u8> {
 }
 
 fn decode_all(input: &[u8], chunk: usize) -> u64 {
-    let mut decoder = ReportDecoder::new(ReportFraming::new());
+    let mut decoder = HostDecoder::new(Framing::<Host>::new());
     let mut frames = 0u64;
     for piece in input.chunks(chunk) {
         let mut rest = piece;

@@ -3,11 +3,10 @@
 //! corruption.
 
 use robowire::telemetrix::{
-    Command, CommandDecoder, CommandFraming, CommandRef, Dialect, EncoderKind, Error,
-    HiwonderCommand, List, ModuleInit, ModuleNew, ModuleReport, ModuleType, OwnedCommand,
-    OwnedReport, Pca9685Channel, Pca9685Command, PinMode, Pull, Pulls, PwmPin, PwmPins, Report,
-    ReportDecoder, ReportFraming, ReportRef, SensorNew, SensorType, ServoMove, ServoPositions,
-    Sonar, SonarReading,
+    Command, CommandBuf, Device, DeviceDecoder, Dialect, EncoderKind, Error, Framing,
+    HiwonderCommand, Host, HostDecoder, List, ModuleInit, ModuleNew, ModuleReport, ModuleType,
+    Pca9685Channel, Pca9685Command, PinMode, Pull, Pulls, PwmPin, PwmPins, Report, ReportBuf,
+    SensorNew, SensorType, ServoMove, ServoPositions, Sonar, SonarReading,
 };
 use robowire::{Encode, EncodeError, FrameBuf, Rejected, StreamDecoder};
 
@@ -43,34 +42,34 @@ where
     out
 }
 
-fn decode_reports(dialect: Dialect, bytes: &[u8]) -> Vec<Ev<OwnedReport>> {
+fn decode_reports(dialect: Dialect, bytes: &[u8]) -> Vec<Ev<ReportBuf>> {
     collect(
-        &mut ReportDecoder::new(ReportFraming::new().with_dialect(dialect)),
+        &mut HostDecoder::new(Framing::<Host>::new().with_dialect(dialect)),
         &[bytes],
     )
 }
 
-fn decode_commands(dialect: Dialect, bytes: &[u8]) -> Vec<Ev<OwnedCommand>> {
+fn decode_commands(dialect: Dialect, bytes: &[u8]) -> Vec<Ev<CommandBuf>> {
     collect(
-        &mut CommandDecoder::new(CommandFraming::new().with_dialect(dialect)),
+        &mut DeviceDecoder::new(Framing::<Device>::new().with_dialect(dialect)),
         &[bytes],
     )
 }
 
-fn encode_command(dialect: Dialect, c: &CommandRef<'_>) -> Vec<u8> {
+fn encode_command(dialect: Dialect, c: &Command<'_>) -> Vec<u8> {
     let frame = FrameBuf::<31>::encode(&c.in_dialect(dialect)).unwrap();
     assert_eq!(frame.len(), c.encoded_len_in(dialect));
     frame.to_vec()
 }
 
-fn encode_report(dialect: Dialect, r: &ReportRef<'_>) -> Vec<u8> {
+fn encode_report(dialect: Dialect, r: &Report<'_>) -> Vec<u8> {
     let frame = FrameBuf::<256>::encode(&r.in_dialect(dialect)).unwrap();
     assert_eq!(frame.len(), r.encoded_len_in(dialect));
     frame.to_vec()
 }
 
 /// Golden command: encodes to `bytes`, and `bytes` decode to exactly it.
-fn golden_command(dialect: Dialect, bytes: &str, c: CommandRef<'_>) {
+fn golden_command(dialect: Dialect, bytes: &str, c: Command<'_>) {
     let bytes = hex(bytes);
     assert_eq!(encode_command(dialect, &c), bytes, "encode {c:?}");
     let events = decode_commands(dialect, &bytes);
@@ -81,7 +80,7 @@ fn golden_command(dialect: Dialect, bytes: &str, c: CommandRef<'_>) {
 }
 
 /// Golden report: encodes to `bytes`, and `bytes` decode to exactly it.
-fn golden_report(dialect: Dialect, bytes: &str, r: ReportRef<'_>) {
+fn golden_report(dialect: Dialect, bytes: &str, r: Report<'_>) {
     let bytes = hex(bytes);
     assert_eq!(encode_report(dialect, &r), bytes, "encode {r:?}");
     let events = decode_reports(dialect, &bytes);
@@ -296,7 +295,7 @@ fn golden_module_data_is_typed() {
 fn golden_port_probe_zeros_are_skipped() {
     let events = decode_commands(M13, &hex("00 00 00 00 00 00 00 01 05"));
     assert_eq!(events, vec![Ok((7, 2, Command::GetFirmwareVersion))]);
-    let mut dec = CommandDecoder::new(CommandFraming::new());
+    let mut dec = DeviceDecoder::new(Framing::<Device>::new());
     let _ = collect(&mut dec, &[&hex("00 00 00 00 00 00 00 01 05")]);
     let stats = dec.stats();
     assert_eq!((stats.skipped, stats.frames, stats.rejected), (7, 1, 0));
@@ -584,7 +583,7 @@ fn dialect_layouts_differ_where_spec_10_says() {
 
 #[test]
 fn encoder_refuses_what_firmware_mishandles() {
-    let enc = |d: Dialect, c: CommandRef<'_>| c.encode_in(d, &mut [0u8; 64]);
+    let enc = |d: Dialect, c: Command<'_>| c.encode_in(d, &mut [0u8; 64]);
     let range = |field| Err(EncodeError::OutOfRange { field });
     let not_here = Err(EncodeError::Inconsistent {
         what: "the command does not exist in this dialect",
@@ -747,7 +746,7 @@ fn encoder_refuses_what_firmware_mishandles() {
 
 #[test]
 fn report_encoder_refuses_what_decoder_rejects() {
-    let enc = |d: Dialect, r: ReportRef<'_>| r.encode_in(d, &mut [0u8; 300]);
+    let enc = |d: Dialect, r: Report<'_>| r.encode_in(d, &mut [0u8; 300]);
     assert!(enc(M13, Report::Encoder { pin: 1, steps: 0 }).is_err());
     assert!(enc(
         M13,
@@ -808,7 +807,7 @@ fn report_encoder_refuses_what_decoder_rejects() {
         },
     ])
     .unwrap();
-    let owned: OwnedReport = Report::Module {
+    let owned: ReportBuf = Report::Module {
         module_num: 0,
         report: ModuleReport::HiwonderPositions(positions),
     };
@@ -929,7 +928,7 @@ fn chunking_invariance_reports() {
     let whole = decode_reports(M13, &input);
     assert!(whole.iter().filter(|e| e.is_ok()).count() >= REPORT_FRAMES.len());
     for i in 0..=input.len() {
-        let mut dec = ReportDecoder::new(ReportFraming::new());
+        let mut dec = HostDecoder::new(Framing::<Host>::new());
         let (a, b) = input.split_at(i);
         assert_eq!(collect(&mut dec, &[a, b]), whole, "split at {i}");
     }
@@ -938,7 +937,7 @@ fn chunking_invariance_reports() {
     let whole = decode_reports(M13, short);
     for i in 0..=short.len() {
         for j in i..=short.len() {
-            let mut dec = ReportDecoder::new(ReportFraming::new());
+            let mut dec = HostDecoder::new(Framing::<Host>::new());
             let parts = [&short[..i], &short[i..j], &short[j..]];
             assert_eq!(collect(&mut dec, &parts), whole, "split at {i}, {j}");
         }
@@ -951,7 +950,7 @@ fn chunking_invariance_commands() {
     let whole = decode_commands(M13, &input);
     for i in 0..=input.len() {
         for j in (i..=input.len()).step_by(7) {
-            let mut dec = CommandDecoder::new(CommandFraming::new());
+            let mut dec = DeviceDecoder::new(Framing::<Device>::new());
             let parts = [&input[..i], &input[i..j], &input[j..]];
             assert_eq!(collect(&mut dec, &parts), whole, "split at {i}, {j}");
         }
@@ -963,7 +962,7 @@ fn every_proper_prefix_is_incomplete() {
     for f in REPORT_FRAMES {
         let frame = hex(f);
         for n in 1..frame.len() {
-            let mut dec = ReportDecoder::new(ReportFraming::new());
+            let mut dec = HostDecoder::new(Framing::<Host>::new());
             let mut input = &frame[..n];
             assert!(dec.decode(&mut input).is_none(), "{f} prefix {n}");
             assert_eq!(dec.buffered(), n);
@@ -981,7 +980,7 @@ fn every_proper_prefix_is_incomplete() {
     for f in COMMAND_FRAMES {
         let frame = hex(f);
         for n in 1..frame.len() {
-            let mut dec = CommandDecoder::new(CommandFraming::new());
+            let mut dec = DeviceDecoder::new(Framing::<Device>::new());
             let mut input = &frame[..n];
             assert!(dec.decode(&mut input).is_none(), "{f} prefix {n}");
             let first = dec.finish().map(|e| e.map(|f| f.offset));
@@ -1000,9 +999,9 @@ fn every_proper_prefix_is_incomplete() {
 fn push_byte_at_a_time_equals_whole() {
     let input = garbage_stream(REPORT_FRAMES);
     let whole = decode_reports(M13, &input);
-    let mut dec = ReportDecoder::new(ReportFraming::new());
+    let mut dec = HostDecoder::new(Framing::<Host>::new());
     let mut got = Vec::new();
-    let map = |e: robowire::Event<'_, ReportRef<'_>, Error>| match e {
+    let map = |e: robowire::Event<'_, Report<'_>, Error>| match e {
         Ok(f) => Ok((f.offset, f.raw.len(), f.message.to_owned())),
         Err(r) => Err((r.offset, r.error)),
     };
@@ -1029,7 +1028,7 @@ fn lenient_mode_skips_unknown_ids_only_before_a_known_frame() {
     let input = hex("02 07 01  03 02 0A 01  04 50 01 02 03  00 00  02 00 41  03 51 01 02");
     let strict = decode_reports(M13, &input);
     assert_eq!(strict.iter().filter(|e| e.is_ok()).count(), 2);
-    let mut dec = robowire::telemetrix::LenientReportDecoder::new(ReportFraming::new().lenient());
+    let mut dec = robowire::telemetrix::LenientHostDecoder::new(Framing::<Host>::new().lenient());
     let events = collect(&mut dec, &[&input]);
     let oks: Vec<_> = events
         .iter()
@@ -1078,7 +1077,7 @@ impl Rng {
 /// A realistic core-0 report (digital, analog, sonar, encoder, PONG, I2C,
 /// sensor) or a core-1 one (Hiwonder positions, DEBUG_PRINT).
 fn random_report(rng: &mut Rng, core1: bool) -> Vec<u8> {
-    let r: ReportRef<'_> = if core1 {
+    let r: Report<'_> = if core1 {
         match rng.below(3) {
             0 => Report::Debug {
                 id: 30,
@@ -1196,7 +1195,7 @@ struct Recovery {
 
 fn measure(t: &Tagged) -> Recovery {
     let intact = t.intact();
-    let mut dec = ReportDecoder::new(ReportFraming::new());
+    let mut dec = HostDecoder::new(Framing::<Host>::new());
     let found: Vec<(u64, usize)> = collect(&mut dec, &[&t.bytes])
         .into_iter()
         .filter_map(Result::ok)

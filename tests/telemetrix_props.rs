@@ -5,12 +5,11 @@
 use proptest::prelude::*;
 use proptest::strategy::Union;
 use robowire::telemetrix::{
-    parse_command, parse_report, Command, CommandDecoder, CommandFraming, Dialect, EncoderKind,
-    HiwonderCommand, LenientReportDecoder, List, ModifyReporting, ModuleCommand, ModuleInit,
-    ModuleNew, ModuleReport, OwnedCommand, OwnedReport, Payload, Pca9685Channel, Pca9685Command,
-    Pca9685Config, PinMode, Pull, Pulls, PwmPin, RelayCommand, Report, ReportDecoder,
-    ReportFraming, Rgb, SensorNew, SensorReading, SensorType, ServoMove, ServoPositions, Sonar,
-    Ssd1306Command, Ssd1306Done, SONAR_NO_ECHO, SONAR_STALE,
+    Command, CommandBuf, Device, DeviceDecoder, Dialect, EncoderKind, Framing, HiwonderCommand,
+    Host, HostDecoder, LenientHostDecoder, List, ModifyReporting, ModuleCommand, ModuleInit,
+    ModuleNew, ModuleReport, Payload, Pca9685Channel, Pca9685Command, Pca9685Config, PinMode, Pull,
+    Pulls, PwmPin, RelayCommand, Report, ReportBuf, Rgb, SensorNew, SensorReading, SensorType,
+    ServoMove, ServoPositions, Sonar, Ssd1306Command, Ssd1306Done, SONAR_NO_ECHO, SONAR_STALE,
 };
 use robowire::{FrameRules, StreamDecoder};
 
@@ -53,7 +52,7 @@ fn f32s<const N: usize>() -> impl Strategy<Value = [f32; N]> {
     prop::array::uniform(-1.0e6f32..1.0e6f32)
 }
 
-type C = OwnedCommand;
+type C = CommandBuf;
 
 /// Every command of `d`, with valid field values.
 fn command(d: Dialect) -> BoxedStrategy<C> {
@@ -336,7 +335,7 @@ fn module_init() -> BoxedStrategy<ModuleInit<Payload<28>>> {
     .boxed()
 }
 
-type R = OwnedReport;
+type R = ReportBuf;
 
 fn sensor_reading() -> BoxedStrategy<SensorReading> {
     prop_oneof![
@@ -619,12 +618,12 @@ proptest! {
         prop_assert!(n <= 31);
         prop_assert_eq!(usize::from(out[0]) + 1, n);
         prop_assert_eq!(out[1], c.id());
-        prop_assert_eq!(parse_command(d, &out[..n]).unwrap(), c.as_ref());
-        let found = frames(CommandDecoder::new(CommandFraming::new().with_dialect(d)), &out[..n]);
+        prop_assert_eq!(Command::parse_in(&out[..n], d).unwrap(), c.as_ref());
+        let found = frames(DeviceDecoder::new(Framing::<Device>::new().with_dialect(d)), &out[..n]);
         prop_assert_eq!(found.len(), 1);
         prop_assert_eq!(&found[0].1, &c);
         for k in 1..n {
-            let mut dec = CommandDecoder::new(CommandFraming::new().with_dialect(d));
+            let mut dec = DeviceDecoder::new(Framing::<Device>::new().with_dialect(d));
             let mut input = &out[..k];
             prop_assert!(dec.decode(&mut input).is_none());
         }
@@ -637,12 +636,12 @@ proptest! {
         let n = r.encode_in(d, &mut out).unwrap();
         prop_assert_eq!(n, r.encoded_len_in(d));
         prop_assert_eq!(usize::from(out[0]) + 1, n);
-        prop_assert_eq!(parse_report(d, &out[..n]).unwrap(), r.as_ref());
-        let found = frames(ReportDecoder::new(ReportFraming::new().with_dialect(d)), &out[..n]);
+        prop_assert_eq!(Report::parse_in(&out[..n], d).unwrap(), r.as_ref());
+        let found = frames(HostDecoder::new(Framing::<Host>::new().with_dialect(d)), &out[..n]);
         prop_assert_eq!(found.len(), 1);
         prop_assert_eq!(&found[0].1, &r);
         for k in 1..n {
-            let mut dec = ReportDecoder::new(ReportFraming::new().with_dialect(d));
+            let mut dec = HostDecoder::new(Framing::<Host>::new().with_dialect(d));
             let mut input = &out[..k];
             prop_assert!(dec.decode(&mut input).is_none());
         }
@@ -654,13 +653,13 @@ proptest! {
     fn commands_across_dialects((d, c) in dialect_and_command(), other in dialect()) {
         let mut out = [0u8; 31];
         if let Ok(n) = c.encode_in(other, &mut out) {
-            prop_assert_eq!(parse_command(other, &out[..n]).unwrap(), c.as_ref());
+            prop_assert_eq!(Command::parse_in(&out[..n], other).unwrap(), c.as_ref());
             if other != d {
                 // Same bytes in both dialects only if both define it the same way.
                 let mut mine = [0u8; 31];
                 let m = c.encode_in(d, &mut mine).unwrap();
                 if mine[..m] == out[..n] {
-                    prop_assert_eq!(parse_command(d, &mine[..m]).unwrap(), c.as_ref());
+                    prop_assert_eq!(Command::parse_in(&mine[..m], d).unwrap(), c.as_ref());
                 }
             }
         }
@@ -670,17 +669,17 @@ proptest! {
     /// to exactly its bytes, in both directions and every dialect.
     #[test]
     fn decoded_frames_re_encode(d in dialect(), bytes in prop::collection::vec(any::<u8>(), 0..600)) {
-        for (raw, c) in frames(CommandDecoder::new(CommandFraming::new().with_dialect(d)), &bytes) {
+        for (raw, c) in frames(DeviceDecoder::new(Framing::<Device>::new().with_dialect(d)), &bytes) {
             let mut out = [0u8; 31];
             let n = c.encode_in(d, &mut out).unwrap();
             prop_assert_eq!(&out[..n], &raw[..]);
         }
-        for (raw, r) in frames(ReportDecoder::new(ReportFraming::new().with_dialect(d)), &bytes) {
+        for (raw, r) in frames(HostDecoder::new(Framing::<Host>::new().with_dialect(d)), &bytes) {
             let mut out = [0u8; 256];
             let n = r.encode_in(d, &mut out).unwrap();
             prop_assert_eq!(&out[..n], &raw[..]);
         }
-        for (raw, r) in frames(LenientReportDecoder::new(ReportFraming::new().with_dialect(d).lenient()), &bytes) {
+        for (raw, r) in frames(LenientHostDecoder::new(Framing::<Host>::new().with_dialect(d).lenient()), &bytes) {
             let mut out = [0u8; 256];
             let n = r.encode_in(d, &mut out).unwrap();
             prop_assert_eq!(&out[..n], &raw[..]);
@@ -702,7 +701,7 @@ proptest! {
             let n = r.encode_in(d, &mut out).unwrap();
             bytes.extend_from_slice(&out[..n]);
         }
-        let mut dec = ReportDecoder::new(ReportFraming::new().with_dialect(d));
+        let mut dec = HostDecoder::new(Framing::<Host>::new().with_dialect(d));
         let found: Vec<_> = dec.feed(&bytes).collect();
         let s = dec.stats();
         prop_assert_eq!(s.bytes, bytes.len() as u64);
@@ -725,7 +724,7 @@ proptest! {
             bytes.extend_from_slice(&out[..n]);
             expected.push(*r);
         }
-        let got: Vec<_> = frames(ReportDecoder::new(ReportFraming::new().with_dialect(d)), &bytes)
+        let got: Vec<_> = frames(HostDecoder::new(Framing::<Host>::new().with_dialect(d)), &bytes)
             .into_iter()
             .map(|(_, m)| m)
             .collect();
@@ -752,7 +751,7 @@ proptest! {
             bytes.extend_from_slice(&out[..n]);
             expected.push(*r);
         }
-        let got: Vec<_> = frames(ReportDecoder::new(ReportFraming::new()), &bytes)
+        let got: Vec<_> = frames(HostDecoder::new(Framing::<Host>::new()), &bytes)
             .into_iter()
             .map(|(_, m)| m)
             .collect();
@@ -811,7 +810,7 @@ fn check_module_frame(data: &[u8]) -> Result<(), TestCaseError> {
     };
     let mut out = [0u8; 31];
     let n = cmd.encode_in(Dialect::Mirte13, &mut out).unwrap();
-    prop_assert_eq!(parse_command(Dialect::Mirte13, &out[..n]).unwrap(), cmd);
+    prop_assert_eq!(Command::parse_in(&out[..n], Dialect::Mirte13).unwrap(), cmd);
     Ok(())
 }
 

@@ -4,9 +4,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use robowire::telemetrix::{
-    CommandDecoder, CommandFraming, Dialect, LenientReportDecoder, ReportDecoder, ReportFraming,
-};
+use robowire::telemetrix::{DeviceDecoder, Framing, Device, Dialect, LenientHostDecoder, HostDecoder, Host};
 
 const DIALECTS: [Dialect; 3] = [Dialect::Mirte13, Dialect::Mirte12, Dialect::Upstream11];
 
@@ -14,7 +12,7 @@ fuzz_target!(|data: &[u8]| {
     for dialect in DIALECTS {
         let mut out = [0u8; 256];
 
-        let mut commands = CommandDecoder::new(CommandFraming::new().with_dialect(dialect));
+        let mut commands = DeviceDecoder::new(Framing::<Device>::new().with_dialect(dialect));
         let mut input = data;
         while let Some(event) = commands.decode(&mut input) {
             if let Ok(frame) = event {
@@ -31,7 +29,7 @@ fuzz_target!(|data: &[u8]| {
             }
         }
 
-        let mut reports = ReportDecoder::new(ReportFraming::new().with_dialect(dialect));
+        let mut reports = HostDecoder::new(Framing::<Host>::new().with_dialect(dialect));
         let mut input = data;
         while let Some(event) = reports.decode(&mut input) {
             if let Ok(frame) = event {
@@ -48,8 +46,8 @@ fuzz_target!(|data: &[u8]| {
             }
         }
 
-        let lenient = ReportFraming::new().with_dialect(dialect).lenient();
-        let mut reports = LenientReportDecoder::new(lenient);
+        let lenient = Framing::<Host>::new().with_dialect(dialect).lenient();
+        let mut reports = LenientHostDecoder::new(lenient);
         let mut input = data;
         while let Some(event) = reports.decode(&mut input) {
             if let Ok(frame) = event {

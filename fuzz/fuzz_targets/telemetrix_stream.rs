@@ -4,9 +4,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use robowire::telemetrix::{
-    CommandDecoder, CommandFraming, Dialect, LenientReportDecoder, ReportDecoder, ReportFraming,
-};
+use robowire::telemetrix::{DeviceDecoder, Framing, Device, Dialect, LenientHostDecoder, HostDecoder, Host};
 use robowire::{FrameRules, OwnedEvent, StreamDecoder};
 
 const DIALECTS: [Dialect; 3] = [Dialect::Mirte13, Dialect::Mirte12, Dialect::Upstream11];
@@ -85,13 +83,13 @@ fuzz_target!(|data: &[u8]| {
     };
     let dialect = DIALECTS[usize::from(select) % 3];
     let (sizes, input) = rest.split_at(rest.len().min(8));
-    let reports = ReportFraming::new().with_dialect(dialect);
-    check(|| ReportDecoder::new(reports), input, sizes);
+    let reports = Framing::<Host>::new().with_dialect(dialect);
+    check(|| HostDecoder::new(reports), input, sizes);
     check(
-        || LenientReportDecoder::new(reports.lenient()),
+        || LenientHostDecoder::new(reports.lenient()),
         input,
         sizes,
     );
-    let commands = CommandFraming::new().with_dialect(dialect);
-    check(|| CommandDecoder::new(commands), input, sizes);
+    let commands = Framing::<Device>::new().with_dialect(dialect);
+    check(|| DeviceDecoder::new(commands), input, sizes);
 });

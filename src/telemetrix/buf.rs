@@ -582,3 +582,31 @@ buf_common!(ReportBuf, MAX_REPORT_FRAME);
 buf_common!(MessageBuf, MAX_FRAME_LEN);
 
 impl Eq for CommandBuf {}
+
+macro_rules! buf_eq_message {
+    ($buf:ty, $message:ident) => {
+        /// An owned message equals the message it holds.
+        impl PartialEq<$message<'_>> for $buf {
+            fn eq(&self, other: &$message<'_>) -> bool {
+                self.message() == *other
+            }
+        }
+
+        /// A message equals an owned message that holds it.
+        impl PartialEq<$buf> for $message<'_> {
+            fn eq(&self, other: &$buf) -> bool {
+                *self == other.message()
+            }
+        }
+
+        impl $buf {
+            /// The frame's id byte.
+            pub fn id(&self) -> u8 {
+                self.frame().get(1).copied().unwrap_or(0)
+            }
+        }
+    };
+}
+
+buf_eq_message!(CommandBuf, Command);
+buf_eq_message!(ReportBuf, Report);
