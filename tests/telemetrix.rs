@@ -76,7 +76,7 @@ fn golden_command(dialect: Dialect, bytes: &str, c: Command<'_>) {
     assert_eq!(events.len(), 1, "{events:?}");
     let (offset, len, ref got) = events[0].unwrap();
     assert_eq!((offset, len), (0, bytes.len()));
-    assert_eq!(got.as_ref(), c);
+    assert_eq!(got.message(), c);
 }
 
 /// Golden report: encodes to `bytes`, and `bytes` decode to exactly it.
@@ -87,7 +87,7 @@ fn golden_report(dialect: Dialect, bytes: &str, r: Report<'_>) {
     assert_eq!(events.len(), 1, "{events:?}");
     let (offset, len, ref got) = events[0].unwrap();
     assert_eq!((offset, len), (0, bytes.len()));
-    assert_eq!(got.as_ref(), r);
+    assert_eq!(got.message(), r);
 }
 
 fn pwm(pins: &[(u8, u16)]) -> PwmPins {
@@ -119,7 +119,7 @@ fn golden_commands_mirte13() {
         "03 02 19 01",
         Command::DigitalWrite {
             pin: 25,
-            high: true,
+            value: true,
         },
     );
     golden_command(
@@ -158,10 +158,10 @@ fn golden_commands_mirte13() {
             kind: EncoderKind::Quadrature,
             pin_a: 14,
             pin_b: 15,
-            pulls: Pulls {
+            pulls: Some(Pulls {
                 up: true,
                 down: false,
-            },
+            }),
         },
     );
     golden_command(
@@ -256,12 +256,9 @@ fn golden_module_data_is_typed() {
         }])
         .unwrap(),
     );
-    let cmd = Command::<&[u8]>::module_data(0, &angle).unwrap();
-    assert_eq!(
-        FrameBuf::<31>::encode(&cmd).unwrap().to_vec(),
-        hex("09 22 00 01 01 00 2E E0 01 F4")
-    );
-    let Command::ModuleData { data, .. } = cmd else {
+    let cmd = Command::module_data(0, &angle).unwrap();
+    assert_eq!(cmd.to_vec(), hex("09 22 00 01 01 00 2E E0 01 F4"));
+    let Command::ModuleData { data, .. } = cmd.message() else {
         panic!("{cmd:?}")
     };
     assert_eq!(
@@ -277,12 +274,9 @@ fn golden_module_data_is_typed() {
         }])
         .unwrap(),
     };
-    let cmd = Command::<&[u8]>::module_data(1, &pca).unwrap();
-    assert_eq!(
-        FrameBuf::<31>::encode(&cmd).unwrap().to_vec(),
-        hex("07 22 01 03 00 00 01 2C")
-    );
-    let Command::ModuleData { data, .. } = cmd else {
+    let cmd = Command::module_data(1, &pca).unwrap();
+    assert_eq!(cmd.to_vec(), hex("07 22 01 03 00 00 01 2C"));
+    let Command::ModuleData { data, .. } = cmd.message() else {
         panic!("{cmd:?}")
     };
     assert_eq!(
@@ -294,7 +288,10 @@ fn golden_module_data_is_typed() {
 #[test]
 fn golden_port_probe_zeros_are_skipped() {
     let events = decode_commands(M13, &hex("00 00 00 00 00 00 00 01 05"));
-    assert_eq!(events, vec![Ok((7, 2, Command::GetFirmwareVersion))]);
+    assert_eq!(
+        events,
+        vec![Ok((7, 2, Command::GetFirmwareVersion.to_buf().unwrap()))]
+    );
     let mut dec = DeviceDecoder::new(Framing::<Device>::new());
     let _ = collect(&mut dec, &[&hex("00 00 00 00 00 00 00 01 05")]);
     let stats = dec.stats();
@@ -374,7 +371,7 @@ fn golden_reports_mirte13() {
         "03 02 0A 01",
         Report::Digital {
             pin: 10,
-            high: true,
+            value: true,
         },
     );
     golden_report(
@@ -429,7 +426,7 @@ fn golden_report_meanings() {
     let events = decode_reports(M13, &hex("05 0B 09 0A FF FD 05 0B 09 0A 00 64"));
     let readings: Vec<_> = events
         .iter()
-        .map(|e| match e.as_ref().unwrap().2 {
+        .map(|e| match e.as_ref().unwrap().2.message() {
             Report::Sonar(s) => s.reading(),
             ref other => panic!("{other:?}"),
         })
@@ -447,14 +444,14 @@ fn golden_report_meanings() {
     let Report::Module {
         report: ModuleReport::HiwonderPositions(p),
         ..
-    } = &events[0].as_ref().unwrap().2
+    } = events[0].as_ref().unwrap().2.message()
     else {
         panic!("{events:?}")
     };
     let positions: Vec<_> = p.iter().map(|p| (p.idx, p.centideg)).collect();
     assert_eq!(positions, [(0, 12000)]);
     assert_eq!(
-        events[0].as_ref().unwrap().2.as_ref(),
+        events[0].as_ref().unwrap().2.message(),
         Report::Module {
             module_num: 0,
             report: ModuleReport::HiwonderPositions(ServoPositions::from_raw(&[0, 0x2E, 0xE0][..]))
@@ -538,7 +535,7 @@ fn dialect_layouts_differ_where_spec_10_says() {
             kind: EncoderKind::Single,
             pin_a: 5,
             pin_b: 0,
-            pulls: Pulls::default(),
+            pulls: None,
         },
     );
     // mirte 1.3 builds of 2024-09..2025-11: sonar without the echo pin.
@@ -607,7 +604,7 @@ fn encoder_refuses_what_firmware_mishandles() {
             M13,
             Command::DigitalWrite {
                 pin: 30,
-                high: true
+                value: true
             }
         ),
         range("pin")
@@ -729,7 +726,7 @@ fn encoder_refuses_what_firmware_mishandles() {
     // Output buffer too small: nothing written.
     let mut out = [0xEEu8; 2];
     assert_eq!(
-        Command::<&[u8]>::Ping { counter: 1 }.encode(&mut out),
+        Command::Ping { counter: 1 }.encode(&mut out),
         Err(EncodeError::BufferTooSmall {
             needed: 3,
             available: 2
@@ -800,21 +797,14 @@ fn report_encoder_refuses_what_decoder_rejects() {
         }
     )
     .is_err());
-    let positions = ServoPositions::<robowire::telemetrix::Payload<254>>::from_positions(&[
-        robowire::telemetrix::ServoPosition {
-            idx: 0,
-            centideg: 12000,
-        },
-    ])
-    .unwrap();
+    let positions = ServoPositions::from_raw(&[0, 0x2E, 0xE0]);
     let owned: ReportBuf = Report::Module {
         module_num: 0,
         report: ModuleReport::HiwonderPositions(positions),
-    };
-    assert_eq!(
-        FrameBuf::<256>::encode(&owned).unwrap().to_vec(),
-        hex("07 22 00 01 00 00 2E E0")
-    );
+    }
+    .to_buf()
+    .unwrap();
+    assert_eq!(owned.to_vec(), hex("07 22 00 01 00 00 2E E0"));
 }
 
 /// Every golden report frame of spec §12 (mirte 1.3), with the spec's `BB`
@@ -914,10 +904,10 @@ fn garbage_that_forms_a_valid_frame_is_not_detectable() {
     assert_eq!(frames.len(), 1);
     assert_eq!((frames[0].0, frames[0].1), (0, 4));
     assert_eq!(
-        frames[0].2.as_ref(),
+        frames[0].2.message(),
         Report::Digital {
             pin: 2,
-            high: false
+            value: false
         }
     );
 }
@@ -1002,7 +992,7 @@ fn push_byte_at_a_time_equals_whole() {
     let mut dec = HostDecoder::new(Framing::<Host>::new());
     let mut got = Vec::new();
     let map = |e: robowire::Event<'_, Report<'_>, Error>| match e {
-        Ok(f) => Ok((f.offset, f.raw.len(), f.message.to_owned())),
+        Ok(f) => Ok((f.offset, f.raw.len(), f.message.to_buf().unwrap())),
         Err(r) => Err((r.offset, r.error)),
     };
     for &b in &input {
@@ -1038,14 +1028,14 @@ fn lenient_mode_skips_unknown_ids_only_before_a_known_frame() {
     // The trailing unknown frame has no known frame after it: truncated.
     assert_eq!(oks, [(0, 3, 7), (3, 4, 2), (7, 5, 0x50), (14, 3, 0)]);
     assert!(matches!(
-        events[1].as_ref().unwrap().2.as_ref(),
+        events[1].as_ref().unwrap().2.message(),
         Report::Digital {
             pin: 10,
-            high: true
+            value: true
         }
     ));
     assert_eq!(
-        events[0].as_ref().unwrap().2.as_ref(),
+        events[0].as_ref().unwrap().2.message(),
         Report::Unknown {
             id: 7,
             payload: &[1][..]
@@ -1102,7 +1092,7 @@ fn random_report(rng: &mut Rng, core1: bool) -> Vec<u8> {
         match rng.below(8) {
             0 | 1 => Report::Digital {
                 pin: rng.below(30) as u8,
-                high: rng.below(2) == 1,
+                value: rng.below(2) == 1,
             },
             2 | 3 => Report::Analog {
                 pin: 26 + rng.below(5) as u8,
