@@ -29,10 +29,10 @@ fn reports() -> Vec<u8> {
     let mut out = Vec::with_capacity(1 << 20);
     let mut frame = [0u8; 16];
     while out.len() < 1 << 20 {
-        let report: Report<&[u8]> = match rng.below(20) {
+        let report: Report<'_> = match rng.below(20) {
             0..=7 => Report::Digital {
                 pin: rng.below(30) as u8,
-                high: rng.below(2) == 1,
+                value: rng.below(2) == 1,
             },
             8..=13 => Report::Analog {
                 pin: 26 + rng.below(5) as u8,

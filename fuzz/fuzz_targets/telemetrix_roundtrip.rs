@@ -4,7 +4,9 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use robowire::telemetrix::{DeviceDecoder, Framing, Device, Dialect, LenientHostDecoder, HostDecoder, Host};
+use robowire::telemetrix::{
+    Device, DeviceDecoder, Dialect, Framing, Host, HostDecoder, LenientHostDecoder,
+};
 
 const DIALECTS: [Dialect; 3] = [Dialect::Mirte13, Dialect::Mirte12, Dialect::Upstream11];
 
@@ -21,11 +23,9 @@ fuzz_target!(|data: &[u8]| {
                     .encode_in(dialect, &mut out)
                     .expect("re-encode command");
                 assert_eq!(&out[..n], frame.raw);
-                let owned = frame.message.to_owned();
-                let m = owned
-                    .encode_in(dialect, &mut out)
-                    .expect("re-encode owned command");
-                assert_eq!(&out[..m], frame.raw);
+                let owned = frame.message.to_buf_in(dialect).expect("own command");
+                assert_eq!(owned.frame(), frame.raw);
+                assert_eq!(owned.message(), frame.message);
             }
         }
 
@@ -38,11 +38,9 @@ fuzz_target!(|data: &[u8]| {
                     .encode_in(dialect, &mut out)
                     .expect("re-encode report");
                 assert_eq!(&out[..n], frame.raw);
-                let owned = frame.message.to_owned();
-                let m = owned
-                    .encode_in(dialect, &mut out)
-                    .expect("re-encode owned report");
-                assert_eq!(&out[..m], frame.raw);
+                let owned = frame.message.to_buf_in(dialect).expect("own report");
+                assert_eq!(owned.frame(), frame.raw);
+                assert_eq!(owned.message(), frame.message);
             }
         }
 

@@ -4,7 +4,9 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use robowire::telemetrix::{DeviceDecoder, Framing, Device, Dialect, LenientHostDecoder, HostDecoder, Host};
+use robowire::telemetrix::{
+    Device, DeviceDecoder, Dialect, Framing, Host, HostDecoder, LenientHostDecoder,
+};
 use robowire::{FrameRules, OwnedEvent, StreamDecoder};
 
 const DIALECTS: [Dialect; 3] = [Dialect::Mirte13, Dialect::Mirte12, Dialect::Upstream11];
@@ -85,11 +87,7 @@ fuzz_target!(|data: &[u8]| {
     let (sizes, input) = rest.split_at(rest.len().min(8));
     let reports = Framing::<Host>::new().with_dialect(dialect);
     check(|| HostDecoder::new(reports), input, sizes);
-    check(
-        || LenientHostDecoder::new(reports.lenient()),
-        input,
-        sizes,
-    );
+    check(|| LenientHostDecoder::new(reports.lenient()), input, sizes);
     let commands = Framing::<Device>::new().with_dialect(dialect);
     check(|| DeviceDecoder::new(commands), input, sizes);
 });
