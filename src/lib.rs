@@ -4,13 +4,10 @@
 #![forbid(unsafe_code)]
 #![doc = include_str!("../README.md")]
 
-#[cfg(feature = "tokio-util-07")]
-extern crate std;
-
-// The serde forms read JSON through an owned value; decoders and encoders
-// never allocate.
 #[cfg(feature = "serde")]
 extern crate alloc;
+#[cfg(feature = "tokio-util-07")]
+extern crate std;
 
 pub mod encode;
 pub mod io;

@@ -99,11 +99,9 @@ pub trait FrameRules {
 
 /// A decoded frame: where it was in the stream, its bytes and its message.
 ///
-/// With the `serde` feature, `raw` is written as a byte string (an array of
-/// numbers in JSON) and deserializing borrows it from the input, which only
-/// formats that hand out borrowed bytes can do (postcard, bincode; not
-/// JSON). To keep a frame in any format, serialize [`OwnedFrame`] instead.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+/// With the `serde` feature it serializes in the JSON-lines schema of the
+/// `robowire` tool, as [`OwnedFrame`] does: `offset`, `len`, then the
+/// message's own members (`raw` is not written).
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Frame<'a, M> {
@@ -111,10 +109,6 @@ pub struct Frame<'a, M> {
     /// was ever given.
     pub offset: u64,
     /// The frame's bytes on the wire.
-    #[cfg_attr(
-        feature = "serde",
-        serde(serialize_with = "crate::serde_support::serialize_bytes")
-    )]
     pub raw: &'a [u8],
     /// The typed message.
     pub message: M,
@@ -134,7 +128,10 @@ impl<M> Frame<'_, M> {
 
 /// An owned decoded message with its place in the stream, as the
 /// [`Feed`] and [`Flush`] iterators yield it.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+///
+/// With the `serde` feature it is one flat object, the JSON-lines schema of
+/// the `robowire` tool: `offset`, `len`, then the message's own members
+/// (`{"offset":0,"len":4,"type":"m1_extend","speed":200}`).
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct OwnedFrame<M> {
@@ -151,7 +148,9 @@ pub struct OwnedFrame<M> {
 pub type Framed<M> = OwnedFrame<M>;
 
 /// A rejected candidate or an unparseable frame, with its stream offset.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+///
+/// With the `serde` feature it is one flat object: `offset`, then the
+/// error's own members (`{"offset":2,"error":"checksum","expected":248,"found":247}`).
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Rejected<E> {
@@ -226,6 +225,35 @@ impl Stats {
         self.rejected += other.rejected;
         self.malformed += other.malformed;
         self.superseded += other.superseded;
+    }
+}
+
+/// One line, as the `robowire` tool's summary prints it:
+/// `2 frames, 20 bytes, 11 bytes skipped, 1 checksum failures, 2 other
+/// rejections, 0 malformed` (candidates set aside by the resync verification
+/// count as rejections).
+///
+/// ```
+/// let mut stats = robowire::Stats::new();
+/// (stats.frames, stats.bytes, stats.frame_bytes, stats.skipped) = (1, 4, 3, 1);
+/// assert_eq!(
+///     stats.to_string(),
+///     "1 frames, 4 bytes, 1 bytes skipped, 0 checksum failures, 0 other rejections, 0 malformed"
+/// );
+/// ```
+impl fmt::Display for Stats {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} frames, {} bytes, {} bytes skipped, {} checksum failures, \
+             {} other rejections, {} malformed",
+            self.frames,
+            self.bytes,
+            self.skipped,
+            self.checksum_errors,
+            self.rejected + self.superseded,
+            self.malformed
+        )
     }
 }
 

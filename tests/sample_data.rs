@@ -22,7 +22,7 @@ fn captures_regenerate_byte_for_byte() {
         let committed = data(capture.name);
         assert!(
             committed == capture.bytes,
-            "tests/data/{} differs from what `cargo run --example tile_sim` generates",
+            "tests/data/{} differs from what `cargo run --example tile_sim -- --tests-data` generates",
             capture.name
         );
     }

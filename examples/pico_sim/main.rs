@@ -4,8 +4,9 @@
 //! line) and the Pico's reports as raw bytes.
 //!
 //! ```sh
-//! cargo run --example pico_sim            # writes tests/data/
-//! cargo run --example pico_sim -- OUT_DIR # writes elsewhere
+//! cargo run --example pico_sim -- OUT_DIR       # writes the captures to OUT_DIR
+//! cargo run --example pico_sim -- --tests-data  # rewrites tests/data/
+//! cargo run --example pico_sim -- --help
 //! ```
 //!
 //! The output depends only on the seed, so it is byte-identical on every
@@ -14,12 +15,28 @@
 
 mod sim;
 
-use std::path::PathBuf;
+#[path = "../common/sim_args.rs"]
+mod sim_args;
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let dir = match std::env::args_os().nth(1) {
-        Some(dir) => PathBuf::from(dir),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data"),
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+const USAGE: &str = "\
+Usage: cargo run --example pico_sim -- OUT_DIR
+       cargo run --example pico_sim -- --tests-data
+
+Writes the seeded sample captures into OUT_DIR (created if needed), or with
+--tests-data rewrites the committed ones in tests/data/. The output depends
+only on the seeds, so it is byte-identical on every run.";
+
+fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
+    let dir = match sim_args::parse(std::env::args_os().skip(1), USAGE, true) {
+        sim_args::Request::Write(dir) => dir,
+        sim_args::Request::TestsData => {
+            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data")
+        }
+        sim_args::Request::Nothing => return Ok(ExitCode::from(2)),
+        sim_args::Request::Exit(code) => return Ok(code),
     };
     std::fs::create_dir_all(&dir)?;
     for capture in sim::captures()? {
@@ -27,5 +44,5 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         std::fs::write(&path, &capture.bytes)?;
         println!("{} ({} bytes)", path.display(), capture.bytes.len());
     }
-    Ok(())
+    Ok(ExitCode::SUCCESS)
 }

@@ -10,6 +10,7 @@
 //! ```sh
 //! cargo run --example pixy2_sim                   # the host's view
 //! cargo run --example pixy2_sim -- CAPTURE.hex    # also write the conversation
+//! cargo run --example pixy2_sim -- --tests-data   # rewrite tests/data/pixy2_conversation.hex
 //! ```
 //!
 //! The conversation, one SPI transaction per line, is committed as
@@ -18,8 +19,29 @@
 //! `robowire decode pixy2 --hex tests/data/pixy2_conversation.hex`.
 
 mod sim;
+#[path = "../common/sim_args.rs"]
+mod sim_args;
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+const USAGE: &str = "\
+Usage: cargo run --example pixy2_sim [-- CAPTURE.hex]
+       cargo run --example pixy2_sim -- --tests-data
+
+Runs a seeded conversation between a host and a simulated Pixy2 and prints
+what the host learns. With CAPTURE.hex, also writes the conversation (one SPI
+transaction per line); --tests-data rewrites tests/data/pixy2_conversation.hex.";
+
+fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
+    let capture = match sim_args::parse(std::env::args_os().skip(1), USAGE, false) {
+        sim_args::Request::Write(path) => Some(path),
+        sim_args::Request::TestsData => Some(
+            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/pixy2_conversation.hex"),
+        ),
+        sim_args::Request::Nothing => None,
+        sim_args::Request::Exit(code) => return Ok(code),
+    };
     let outcome = sim::run(&mut |line| println!("{line}"))?;
     let device = outcome.device;
     println!(
@@ -32,13 +54,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         outcome.learned.prog_changing,
         outcome.learned.no_response
     );
-    if let Some(path) = std::env::args_os().nth(1) {
+    if let Some(path) = capture {
         std::fs::write(&path, &outcome.capture)?;
         println!(
             "{} ({} SPI transactions)",
-            std::path::Path::new(&path).display(),
+            path.display(),
             outcome.capture.lines().count()
         );
     }
-    Ok(())
+    Ok(ExitCode::SUCCESS)
 }

@@ -3,8 +3,9 @@
 //! SPI telemetry buffers, and host commands (a byte stream and SPI buffers).
 //!
 //! ```sh
-//! cargo run --example tile_sim            # writes tests/data/
-//! cargo run --example tile_sim -- OUT_DIR # writes elsewhere
+//! cargo run --example tile_sim -- OUT_DIR       # writes the captures to OUT_DIR
+//! cargo run --example tile_sim -- --tests-data  # rewrites tests/data/
+//! cargo run --example tile_sim -- --help
 //! ```
 //!
 //! The output depends only on the seeds, so it is byte-identical on every run;
@@ -12,12 +13,28 @@
 
 mod sim;
 
-use std::path::PathBuf;
+#[path = "../common/sim_args.rs"]
+mod sim_args;
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let dir = match std::env::args_os().nth(1) {
-        Some(dir) => PathBuf::from(dir),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data"),
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+const USAGE: &str = "\
+Usage: cargo run --example tile_sim -- OUT_DIR
+       cargo run --example tile_sim -- --tests-data
+
+Writes the seeded sample captures into OUT_DIR (created if needed), or with
+--tests-data rewrites the committed ones in tests/data/. The output depends
+only on the seeds, so it is byte-identical on every run.";
+
+fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
+    let dir = match sim_args::parse(std::env::args_os().skip(1), USAGE, true) {
+        sim_args::Request::Write(dir) => dir,
+        sim_args::Request::TestsData => {
+            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data")
+        }
+        sim_args::Request::Nothing => return Ok(ExitCode::from(2)),
+        sim_args::Request::Exit(code) => return Ok(code),
     };
     std::fs::create_dir_all(&dir)?;
     for capture in sim::captures()? {
@@ -25,5 +42,5 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         std::fs::write(&path, &capture.bytes)?;
         println!("{} ({} bytes)", path.display(), capture.bytes.len());
     }
-    Ok(())
+    Ok(ExitCode::SUCCESS)
 }

@@ -16,7 +16,7 @@
 //! // Noise, then M1 extend at 200, then a ping.
 //! let uart_rx: &[u8] = &[0x00, 0xa5, 0xa5, 0x30, 0xc8, 0xf8, 0xa5, 0x50, 0x50];
 //! let mut buf = [0u8; 16];
-//! let mut rx = PacketReader::new(uart_rx, Decoder::new(FrameRules::commands()), &mut buf[..]);
+//! let mut rx = PacketReader::new(uart_rx, Decoder::new(Framing::commands()), &mut buf[..]);
 //! let mut uart_tx = [0u8; 128];
 //! let mut tx = PacketWriter::<_, { Telemetry::MAX_LEN }>::new(&mut uart_tx[..]);
 //!

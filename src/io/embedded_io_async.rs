@@ -15,7 +15,7 @@
 //!     W: embedded_io_async::Write,
 //! {
 //!     let mut buf = [0u8; 32];
-//!     let mut rx = PacketReader::new(uart_rx, Decoder::new(FrameRules::commands()), &mut buf[..]);
+//!     let mut rx = PacketReader::new(uart_rx, Decoder::new(Framing::commands()), &mut buf[..]);
 //!     let mut tx = PacketWriter::<_, { Command::MAX_LEN }>::new(uart_tx);
 //!     // Echo every command back; stop at the end of the input or on a read error.
 //!     while let Ok(Some(frame)) = rx.read_message().await {

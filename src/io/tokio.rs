@@ -36,7 +36,7 @@
 //! # async fn main() -> std::io::Result<()> {
 //! let (host, tile) = tokio::io::duplex(64);
 //! let mut to_tile = FramedWrite::new(host, OmniTilesCodec::default());
-//! let mut at_tile = FramedRead::new(tile, OmniTilesCodec::new(FrameRules::commands()));
+//! let mut at_tile = FramedRead::new(tile, OmniTilesCodec::new(Framing::commands()));
 //!
 //! to_tile.send(Command::Extend { motor: Motor::M1, speed: 200 }).await?;
 //! to_tile.send(Command::Ping).await?;
@@ -68,7 +68,7 @@ use crate::stream::{
 
 /// The OmniTiles codec: `FramedRead::new(port, OmniTilesCodec::default())`
 /// yields [`OwnedFrame<Packet>`](crate::omnitiles::Packet) and accepts commands and
-/// telemetry in the documented layouts ([`FrameRules::ANY`](crate::omnitiles::Framing::ANY)).
+/// telemetry in the documented layouts ([`Framing::ANY`](crate::omnitiles::Framing::ANY)).
 pub type OmniTilesCodec<Y = Messages> =
     FrameCodec<crate::omnitiles::Framing, { crate::omnitiles::BUFFER_LEN }, Y>;
 
@@ -172,7 +172,7 @@ impl<F: FrameRules, const N: usize, Y> FrameCodec<F, N, Y> {
     /// use robowire::omnitiles::Framing;
     /// use tokio_util::codec::Decoder;
     ///
-    /// let mut codec = OmniTilesCodec::new(FrameRules::commands()).events();
+    /// let mut codec = OmniTilesCodec::new(Framing::commands()).events();
     /// // A ping with a bad checksum, then a good one.
     /// let mut bytes = bytes::BytesMut::from(&[0xa5, 0x50, 0x51, 0xa5, 0x50, 0x50][..]);
     /// assert!(codec.decode(&mut bytes)?.unwrap().is_err());

@@ -67,10 +67,41 @@ pub fn position_target_mm(motor: Motor, position: u8) -> f32 {
     position_to_mm(motor, position).clamp(lo, hi)
 }
 
-/// The set-position byte for a target in millimetres, as the SDK encodes it:
-/// `round(mm / stroke · 255)`, clamped to 0..=255. NaN gives 0.
-pub fn mm_to_position(motor: Motor, mm: f32) -> u8 {
-    round((mm / motor.stroke_mm() * 255.0).clamp(0.0, 255.0)) as u8
+/// The set-position byte for a target in millimetres, exactly as the SDK
+/// encodes it: `round(mm / stroke · 255)` computed in `f64` with
+/// round-half-to-even (Python's `round`), then clamped to 0..=255. NaN gives
+/// 0 (the SDK raises). Takes `f32` or `f64`; an `f32` is widened exactly.
+///
+/// ```
+/// use robowire::omnitiles::{units::mm_to_position, Motor};
+/// // 25 / 150 · 255 = 42.5: ties go to the even byte, as in the SDK.
+/// assert_eq!(mm_to_position(Motor::M1, 25.0), 42);
+/// assert_eq!(mm_to_position(Motor::M2, 30.0_f32), 76);
+/// ```
+pub fn mm_to_position(motor: Motor, mm: impl Into<f64>) -> u8 {
+    let x = mm.into() / f64::from(motor.stroke_mm()) * 255.0;
+    // NaN fails both comparisons and ends at 0.
+    let x = if x >= 255.0 {
+        255.0
+    } else if x > 0.0 {
+        x
+    } else {
+        0.0
+    };
+    round_half_even(x) as u8
+}
+
+/// Round a value in 0.0..=255.0 to the nearest whole number, ties to even,
+/// without `std`. Exact: the integer part and the fraction of such an `f64`
+/// are both representable.
+fn round_half_even(x: f64) -> f64 {
+    let whole = f64::from(x as u32);
+    let fraction = x - whole;
+    if fraction > 0.5 || (fraction == 0.5 && (x as u32) % 2 == 1) {
+        whole + 1.0
+    } else {
+        whole
+    }
 }
 
 /// A base velocity byte as normalised duty: `v / 127` (so −128 → −1.008).

@@ -4,8 +4,6 @@
 //! fields, out-of-range values and wrong types are errors that name the
 //! field) and encodes, so a deserialized owned form holds a valid frame.
 
-mod reader;
-
 use alloc::format;
 use alloc::string::{String, ToString};
 use alloc::vec::Vec;
@@ -14,7 +12,6 @@ use core::fmt;
 use serde::de::{self, Deserialize, Deserializer};
 use serde::ser::{Serialize, SerializeMap, SerializeSeq, Serializer};
 
-use self::reader::{read_f32, read_int, serialize_f32, Fields, Value};
 use super::buf::{CommandBuf, Message, MessageBuf, ReportBuf};
 use super::command::{
     Command, EncoderKind, ModifyReporting, PinMode, Pull, Pulls, PwmPin, PwmPins, Rgb,
@@ -31,6 +28,7 @@ use super::module::{
 use super::report::{Report, Sonar, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
 use super::sensor::{SensorNew, SensorReading, SensorType};
 use super::wire::{COMMAND_PAYLOAD_MAX, MAX_REPORT_FRAME};
+use crate::serde_support::{read_f32, read_int, serialize_f32, Fields, Value};
 
 // ---------------------------------------------------------------- Serialize
 

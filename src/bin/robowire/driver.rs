@@ -8,6 +8,8 @@ use crate::json::{Fields, JsonLine};
 use crate::Failure;
 use clap::Args;
 use robowire::stream::{FrameRules, OwnedEvent, Stats, StreamDecoder};
+use serde::de::DeserializeOwned;
+use serde::Serialize;
 use serde_json::Value;
 use std::io::{self, BufWriter, StdoutLock, Write};
 use std::path::PathBuf;
@@ -28,6 +30,23 @@ pub trait Protocol {
     /// append the frame's bytes to `frame`. The error names the problem; the
     /// caller adds the input's name and the line number.
     fn encode(fields: Fields<'_>, frame: &mut Vec<u8>) -> Result<(), String>;
+}
+
+/// What a protocol supplies to the tool when its library types carry the
+/// JSON-lines schema (their `serde` form): the decoder's rules, what one input
+/// line reads into, and how that becomes a frame. Printing is the library's
+/// `Serialize` of [`OwnedFrame`](robowire::OwnedFrame) and
+/// [`Rejected`](robowire::Rejected); reading is the message's `Deserialize`,
+/// which validates as the encoder does.
+#[allow(dead_code)] // until every protocol reads and prints through its library schema
+pub trait Schema {
+    /// The decoder's rules; their messages and errors serialize to the schema.
+    type Rules: FrameRules<Owned: Serialize, Error: Serialize>;
+    /// What one JSON line (that is not a diagnostic event) deserializes into.
+    type Line: DeserializeOwned;
+
+    /// Append the frame of `line` to `frame`; the error names the problem.
+    fn encode(&self, line: &Self::Line, frame: &mut Vec<u8>) -> Result<(), String>;
 }
 
 /// Options every `decode` subcommand shares.
@@ -96,6 +115,8 @@ impl Output {
 pub struct Printer<'o> {
     out: &'o mut Output,
     line: JsonLine,
+    #[allow(dead_code)] // until every protocol reads and prints through its library schema
+    text: Vec<u8>,
     errors: bool,
 }
 
@@ -105,6 +126,7 @@ impl<'o> Printer<'o> {
         Printer {
             out,
             line: JsonLine::default(),
+            text: Vec::with_capacity(256),
             errors,
         }
     }
@@ -127,6 +149,26 @@ impl<'o> Printer<'o> {
             Err(_) => return Ok(()),
         }
         self.out.write(line.end())
+    }
+
+    /// Print one event in the library's serde form.
+    #[allow(dead_code)] // until every protocol reads and prints through its library schema
+    pub fn serde_event<R: FrameRules<Owned: Serialize, Error: Serialize>>(
+        &mut self,
+        event: OwnedEvent<R>,
+    ) -> Result<(), Failure> {
+        let buf = &mut self.text;
+        buf.clear();
+        let written = match event {
+            Ok(frame) => serde_json::to_writer(&mut *buf, &frame),
+            Err(rejected) if self.errors => serde_json::to_writer(&mut *buf, &rejected),
+            Err(_) => return Ok(()),
+        };
+        // The library's types always serialize: a failure here is a bug in
+        // robowire, reported rather than hidden.
+        written.map_err(|e| Failure::Reported(format!("cannot print an event: {e}")))?;
+        buf.push(b'\n');
+        self.out.write(buf)
     }
 
     /// Write out everything printed so far (before waiting for input, so a
@@ -186,19 +228,49 @@ pub fn decode_stream<P: Protocol, const N: usize>(
     })
 }
 
+/// [`decode_stream`] for a protocol whose types carry the schema ([`Schema`]).
+#[allow(dead_code)] // until every protocol reads and prints through its library schema
+pub fn decode_serde<R, const N: usize>(
+    mut decoder: StreamDecoder<R, N>,
+    source: &mut dyn ByteSource,
+    chunk: usize,
+    printer: &mut Printer<'_>,
+) -> Result<Decoded, Failure>
+where
+    R: FrameRules<Owned: Serialize, Error: Serialize>,
+{
+    let mut buf = vec![0u8; chunk];
+    loop {
+        let n = match source.fill(&mut buf) {
+            Ok(0) => break,
+            Ok(n) => n,
+            Err(failure) => {
+                return Ok(Decoded {
+                    stats: decoder.stats(),
+                    failure: Some(failure),
+                })
+            }
+        };
+        for event in decoder.feed(&buf[..n]) {
+            printer.serde_event::<R>(event)?;
+        }
+        // Before a read that may wait, show what has been decoded so far.
+        if source.may_wait() {
+            printer.flush()?;
+        }
+    }
+    for event in decoder.flush() {
+        printer.serde_event::<R>(event)?;
+    }
+    Ok(Decoded {
+        stats: decoder.stats(),
+        failure: None,
+    })
+}
+
 /// The one-line summary printed on stderr at the end of a decode.
 pub fn summary(stats: &Stats) -> String {
-    format!(
-        "robowire: {} frames, {} bytes, {} bytes skipped, {} checksum failures, \
-         {} other rejections, {} malformed",
-        stats.frames,
-        stats.bytes,
-        stats.skipped,
-        stats.checksum_errors,
-        // Candidates set aside by the resync verification are rejections too.
-        stats.rejected + stats.superseded,
-        stats.malformed
-    )
+    format!("robowire: {stats}")
 }
 
 /// Encode every JSON line of `input` with protocol `P`, writing raw bytes or,
@@ -251,6 +323,77 @@ pub fn encode_lines<P: Protocol>(input: Input, hex: bool, out: &mut Output) -> R
         return Err(Failure::Reported(format!("{bad} malformed line{s}")));
     }
     Ok(())
+}
+
+/// [`encode_lines`] for a protocol whose types carry the schema ([`Schema`]).
+#[allow(dead_code)] // until every protocol reads and prints through its library schema
+pub fn encode_serde<P: Schema>(
+    protocol: &P,
+    input: Input,
+    hex: bool,
+    out: &mut Output,
+) -> Result<(), Failure> {
+    let mut lines = Lines::new(input);
+    let mut frame = Vec::new();
+    let mut text = Vec::new();
+    let mut bad = 0u64;
+    loop {
+        // Flush before a read that may wait, so frames go out as lines arrive.
+        if !lines.has_buffered() {
+            out.flush()?;
+        }
+        let Some((number, line)) = lines.next_line()? else {
+            break;
+        };
+        if line.iter().all(u8::is_ascii_whitespace) {
+            continue;
+        }
+        frame.clear();
+        let read = read_line::<P::Line>(line)
+            .and_then(|line| line.map_or(Ok(()), |line| protocol.encode(&line, &mut frame)));
+        match read {
+            Ok(()) if frame.is_empty() => continue,
+            Ok(()) => {}
+            Err(message) => {
+                eprintln!("robowire: {}: line {number}: {message}", lines.name());
+                bad += 1;
+                continue;
+            }
+        }
+        if hex {
+            text.clear();
+            for (i, byte) in frame.iter().enumerate() {
+                let sep = if i == 0 { "" } else { " " };
+                // Writing into a Vec cannot fail.
+                let _ = write!(text, "{sep}{byte:02x}");
+            }
+            text.push(b'\n');
+            out.write(&text)?;
+        } else {
+            out.write(&frame)?;
+        }
+    }
+    if bad > 0 {
+        let s = if bad == 1 { "" } else { "s" };
+        return Err(Failure::Reported(format!("{bad} malformed line{s}")));
+    }
+    Ok(())
+}
+
+/// One JSON line read into `L`; `None` for a diagnostic event (an object with
+/// `error` and no `type`, as `decode --errors` prints them).
+#[allow(dead_code)] // until every protocol reads and prints through its library schema
+fn read_line<L: DeserializeOwned>(line: &[u8]) -> Result<Option<L>, String> {
+    let value: Value = serde_json::from_slice(line).map_err(|e| format!("not valid JSON: {e}"))?;
+    let map = value
+        .as_object()
+        .ok_or_else(|| format!("expected a JSON object, found {value}"))?;
+    if !map.contains_key("type") && map.contains_key("error") {
+        return Ok(None);
+    }
+    serde_json::from_value(value)
+        .map(Some)
+        .map_err(|e| e.to_string())
 }
 
 /// One line: a frame appended to `frame`, nothing for a diagnostic event, or

@@ -44,18 +44,6 @@ impl JsonLine {
         self.buf.extend_from_slice(b"\":");
     }
 
-    /// Members already written as JSON (`"k":v,...`, without braces).
-    pub fn raw_members(&mut self, members: &[u8]) {
-        if members.is_empty() {
-            return;
-        }
-        if !self.first {
-            self.buf.push(b',');
-        }
-        self.first = false;
-        self.buf.extend_from_slice(members);
-    }
-
     /// A member whose value is anything [`Scalar`].
     pub fn field<S: Scalar>(&mut self, key: &str, value: S) {
         self.key(key);
@@ -292,11 +280,6 @@ impl<'a> Fields<'a> {
             map,
             taken: Vec::new(),
         }
-    }
-
-    /// All members.
-    pub fn map(&self) -> &'a Map<String, Value> {
-        self.map
     }
 
     /// Whether the member `key` is present (`null` counts as present).

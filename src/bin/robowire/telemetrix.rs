@@ -3,15 +3,14 @@
 //! and the `--from any` attribution are the library's
 //! ([`robowire::telemetrix`]).
 
-use crate::driver::{DecodeCommon, Decoded, EncodeCommon, Output, Printer, Protocol};
+use crate::driver::{DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
 use crate::input::{ByteSource, HexBytes, Input, RawBytes};
-use crate::json::{Fields, JsonLine};
 use crate::Failure;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 use robowire::stream::{OwnedEvent, OwnedFrame, StreamDecoder};
 use robowire::telemetrix::{
-    Both, CaptureContext, Command, Device, Dialect, Error, Framing, Host, MessageBuf, Report, Side,
+    Both, CaptureContext, Command, Device, Dialect, Framing, Host, MessageBuf, Report, Side,
     BOTH_BUFFER,
 };
 
@@ -231,7 +230,7 @@ where
                 message,
             }
         });
-        printer.event::<Telemetrix>(event)
+        printer.serde_event::<Framing<Both>>(event)
     };
     let mut buf = vec![0u8; chunk];
     loop {
@@ -265,41 +264,24 @@ where
 /// Run `encode telemetrix`.
 pub fn encode(args: &EncodeArgs, out: &mut Output) -> Result<(), Failure> {
     let input = Input::open(args.common.input.as_deref())?;
-    let hex = args.common.hex;
-    match args.dialect {
-        Dialect::Mirte13 => crate::driver::encode_lines::<Telemetrix>(input, hex, out),
-        Dialect::Mirte12 => crate::driver::encode_lines::<Telemetrix<1>>(input, hex, out),
-        Dialect::Upstream11 => crate::driver::encode_lines::<Telemetrix<2>>(input, hex, out),
-    }
+    let protocol = Telemetrix {
+        dialect: args.dialect,
+    };
+    crate::driver::encode_serde(&protocol, input, args.common.hex, out)
 }
 
-/// The Telemetrix protocol as the tool sees it. `D` is the dialect that
-/// `encode` writes (its index in [`Dialect::ALL`]): the driver's encode hook
-/// takes no options, so the dialect is part of the type.
-pub struct Telemetrix<const D: usize = 0>;
-
-/// The members of `value`'s JSON object, without the braces.
-fn members(value: &impl serde::Serialize, line: &mut JsonLine) {
-    if let Ok(json) = serde_json::to_vec(value) {
-        line.raw_members(json.get(1..json.len() - 1).unwrap_or_default());
-    }
+/// Telemetrix as the tool encodes it: lines are read for `dialect` (which
+/// fields a type has depends on it).
+pub struct Telemetrix {
+    dialect: Dialect,
 }
 
-impl<const D: usize> Protocol for Telemetrix<D> {
-    type Framing = Framing<Both>;
+impl Schema for Telemetrix {
+    type Rules = Framing<Both>;
+    type Line = serde_json::Value;
 
-    fn describe(message: &MessageBuf, line: &mut JsonLine) {
-        members(message, line);
-    }
-
-    fn describe_error(error: &Error, line: &mut JsonLine) {
-        members(error, line);
-    }
-
-    fn encode(fields: Fields<'_>, frame: &mut Vec<u8>) -> Result<(), String> {
-        let dialect = Dialect::ALL[D];
-        let value = serde_json::Value::Object(fields.map().clone());
-        let message = MessageBuf::deserialize_in(&value, dialect).map_err(|e| e.to_string())?;
+    fn encode(&self, line: &serde_json::Value, frame: &mut Vec<u8>) -> Result<(), String> {
+        let message = MessageBuf::deserialize_in(line, self.dialect).map_err(|e| e.to_string())?;
         frame.extend_from_slice(&message);
         Ok(())
     }
