@@ -561,8 +561,6 @@ fn serde_borrowed_views_borrow_bytes() {
     use serde::de::value::{BorrowedBytesDeserializer, Error};
     use serde::Deserialize;
 
-    fn borrows<'a, T: Deserialize<'a>>() {}
-
     let owned = FeaturesBuf::from_parts(&[Vector::default()], &[], &[]).unwrap();
     let bytes = owned.view().as_bytes();
     let view = Features::deserialize(BorrowedBytesDeserializer::<Error>::new(bytes)).unwrap();

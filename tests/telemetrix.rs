@@ -262,7 +262,7 @@ fn golden_module_data_is_typed() {
         panic!("{cmd:?}")
     };
     assert_eq!(
-        <HiwonderCommand as robowire::telemetrix::ModuleCommand>::parse(&data),
+        <HiwonderCommand as robowire::telemetrix::ModuleCommand>::parse(data),
         Ok(angle)
     );
 
@@ -280,7 +280,7 @@ fn golden_module_data_is_typed() {
         panic!("{cmd:?}")
     };
     assert_eq!(
-        <Pca9685Command as robowire::telemetrix::ModuleCommand>::parse(&data),
+        <Pca9685Command as robowire::telemetrix::ModuleCommand>::parse(data),
         Ok(pca)
     );
 }

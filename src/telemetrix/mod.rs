@@ -34,7 +34,7 @@
 //!
 //! # Encoding
 //!
-//! Every message implements [`Encode`](crate::Encode) for mirte 1.3;
+//! Every message implements [`Encode`] for mirte 1.3;
 //! `encode_in(dialect, out)`, `to_buf_in(dialect)` or [`InDialect`] select
 //! another dialect. The encoder never emits a frame its own decoder would
 //! reject: after writing into a scratch buffer it runs the decoder's parser
