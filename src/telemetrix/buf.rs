@@ -34,6 +34,39 @@ const NO_COMMAND: Command<'static> = Command::GetFirmwareVersion;
 /// See [`NO_COMMAND`].
 const NO_REPORT: Report<'static> = Report::LoopBack { byte: 0 };
 
+/// The first of `command`'s home dialects that accepts `frame`, its bytes.
+fn command_dialect(command: &Command<'_>, frame: &[u8]) -> Dialect {
+    command
+        .home_dialects()
+        .iter()
+        .copied()
+        .find(|&d| parse_command(d, frame).is_ok())
+        .unwrap_or_default()
+}
+
+/// The first of `report`'s home dialects that accepts `frame`, its bytes,
+/// and whether it must be read leniently (an unknown report).
+fn report_dialect(report: &Report<'_>, frame: &[u8]) -> (Dialect, bool) {
+    match *report {
+        Report::Unknown { id, .. } => (
+            Dialect::ALL
+                .into_iter()
+                .find(|&d| !report_known(d, id))
+                .unwrap_or_default(),
+            true,
+        ),
+        _ => (
+            report
+                .home_dialects()
+                .iter()
+                .copied()
+                .find(|&d| parse_report_with(d, false, frame).is_ok())
+                .unwrap_or_default(),
+            false,
+        ),
+    }
+}
+
 /// An owned command: the bytes of one valid command frame and the dialect it
 /// is valid in. [`message`](Self::message) parses it on access (it cannot
 /// fail: every way to make a `CommandBuf` checks the bytes); it dereferences
@@ -86,13 +119,7 @@ impl CommandBuf {
     pub(crate) fn from_parsed(command: &Command<'_>) -> Self {
         let mut bytes = [0; MAX_COMMAND_FRAME];
         command.write_unchecked(&mut bytes);
-        let frame = frame_of(&bytes);
-        let dialect = command
-            .home_dialects()
-            .iter()
-            .copied()
-            .find(|&d| parse_command(d, frame).is_ok())
-            .unwrap_or_default();
+        let dialect = command_dialect(command, frame_of(&bytes));
         Self { bytes, dialect }
     }
 
@@ -167,25 +194,7 @@ impl ReportBuf {
     pub(crate) fn from_parsed(report: &Report<'_>) -> Self {
         let mut bytes = [0; MAX_REPORT_FRAME];
         report.write_unchecked(&mut bytes);
-        let frame = frame_of(&bytes);
-        let (dialect, lenient) = match *report {
-            Report::Unknown { id, .. } => (
-                Dialect::ALL
-                    .into_iter()
-                    .find(|&d| !report_known(d, id))
-                    .unwrap_or_default(),
-                true,
-            ),
-            _ => (
-                report
-                    .home_dialects()
-                    .iter()
-                    .copied()
-                    .find(|&d| parse_report_with(d, false, frame).is_ok())
-                    .unwrap_or_default(),
-                false,
-            ),
-        };
+        let (dialect, lenient) = report_dialect(report, frame_of(&bytes));
         Self {
             bytes,
             dialect,
@@ -394,9 +403,26 @@ impl From<&Message<'_>> for MessageBuf {
     /// value out of range) gives a frame that reads as something else: use
     /// [`CommandBuf::new`] or [`ReportBuf::new`] to be told.
     fn from(message: &Message<'_>) -> Self {
-        match message {
-            Message::Command(c) => CommandBuf::from_parsed(c).into(),
-            Message::Report(r) => ReportBuf::from_parsed(r).into(),
+        let mut bytes = [0; MAX_FRAME_LEN];
+        let (dialect, lenient, direction) = match message {
+            Message::Command(c) => {
+                c.write_unchecked(&mut bytes);
+                let dialect = command_dialect(c, frame_of(&bytes));
+                (dialect, false, Direction::Command)
+            }
+            Message::Report(r) => {
+                r.write_unchecked(&mut bytes);
+                let (dialect, lenient) = report_dialect(r, frame_of(&bytes));
+                (dialect, lenient, Direction::Report)
+            }
+        };
+        Self {
+            bytes,
+            dialect,
+            lenient,
+            direction,
+            also: false,
+            module_type: None,
         }
     }
 }

@@ -12,7 +12,7 @@ use super::dialect::Dialect;
 use super::error::Error;
 use super::module::{ModuleNew, ModuleType};
 use super::report::{parse_report_with, report_header_len, report_known, report_len_ok, Report};
-use super::wire::MAX_COMMAND_LEN;
+use super::wire::{command_id, report_id, MAX_COMMAND_LEN};
 
 mod sealed {
     pub trait Sealed {}
@@ -357,12 +357,23 @@ impl CaptureContext {
     /// MODULE_DATA; learn from it.
     pub fn annotate(&mut self, message: &mut MessageBuf) {
         let frame = message.frame();
-        let command = if self.commands {
+        let id = frame.get(1).copied().unwrap_or(0);
+        // One direction only: the frame is read the other way only when it
+        // may say something about modules.
+        let command_matters = self.reports
+            || matches!(
+                id,
+                command_id::MODULE_NEW
+                    | command_id::MODULE_DATA
+                    | command_id::RESET_BOARD
+                    | command_id::BOOTLOADER_RESET
+            );
+        let command = if self.commands && command_matters {
             parse_command(self.dialect, frame).ok()
         } else {
             None
         };
-        let report = if self.reports {
+        let report = if self.reports && (self.commands || id == report_id::MODULE) {
             match parse_report_with(self.dialect, self.lenient, frame) {
                 // A known command outranks a lenient unknown report.
                 Ok(Report::Unknown { .. }) if command.is_some() => None,
@@ -372,9 +383,10 @@ impl CaptureContext {
             None
         };
         let (as_command, also) = match (&command, &report) {
+            (Some(_), Some(_)) => (self.host_last, true),
             (Some(_), None) => (true, false),
             (None, Some(_)) => (false, false),
-            (Some(_), Some(_)) => (self.host_last, true),
+            (None, None) if self.commands != self.reports => (self.commands, false),
             (None, None) => return,
         };
         let mut module_type = None;
