@@ -98,7 +98,7 @@ fn defmt_formats_reports_and_counters() {
         format::<robowire::pixy2::Both>(),
         format::<robowire::pixy2::Framing<robowire::pixy2::Host>>(),
         format::<robowire::pixy2::Form>(),
-        format::<robowire::pixy2::Packet<robowire::pixy2::Request>>(),
+        format::<robowire::pixy2::Envelope<robowire::pixy2::Request>>(),
         format::<robowire::pixy2::Message<'static>>(),
         format::<robowire::pixy2::MessageBuf>(),
         format::<robowire::pixy2::PairError>(),
@@ -342,39 +342,41 @@ fn serde_omnitiles_telemetry() {
 #[test]
 fn serde_pixy2_requests() {
     use robowire::pixy2::{
-        ChangeProg, Form, GetBlocks, Host, MessageBuf, Packet, ProgName, Request, SetServos,
+        ChangeProg, Envelope, Form, GetBlocks, Host, MessageBuf, ProgName, Request, SetServos,
     };
 
     json_round_trip(
-        &Packet::new(
+        &Envelope::new(
             Form::NoChecksum,
             Request::from(GetBlocks {
                 sigmap: GetBlocks::ALL,
                 max_blocks: 4,
             }),
         ),
-        r#"{"form":"NoChecksum","body":{"GetBlocks":{"sigmap":255,"max_blocks":4}}}"#,
+        r#"{"type":"get_blocks","checksum":false,"sigmap":255,"max_blocks":4}"#,
     );
     json_round_trip(
         &MessageBuf::Request(Request::from(SetServos { pan: 500, tilt: 20 })),
-        r#"{"Request":{"SetServos":{"pan":500,"tilt":20}}}"#,
+        r#"{"type":"set_servos","pan":500,"tilt":20}"#,
     );
 
-    // A program name is its payload bytes, padding included.
-    let line = Request::from(ChangeProg(ProgName::LINE_TRACKING));
-    let json = serde_json::to_string(&line).unwrap();
-    assert!(
-        json.starts_with(r#"{"ChangeProg":[108,105,110,101,95,"#),
-        "{json}"
+    // A program name is its text; a payload of other than 33 bytes says so.
+    json_round_trip(
+        &Request::from(ChangeProg(ProgName::LINE_TRACKING)),
+        r#"{"type":"change_prog","name":"line_tracking"}"#,
     );
-    assert_eq!(json.matches(',').count(), 32, "33 bytes: {json}");
-    assert_eq!(serde_json::from_str::<Request>(&json).unwrap(), line);
+    json_round_trip(
+        &Request::from(ChangeProg(ProgName::from_payload(b"video").unwrap())),
+        r#"{"type":"change_prog","name":"video","payload_len":5}"#,
+    );
+    // ProgName alone is its payload bytes, padding included.
     let short = ProgName::from_payload(b"video").unwrap();
     json_round_trip(&short, "[118,105,100,101,111]");
     let too_long = format!("[{}]", ["120"; 65].join(","));
     let err = serde_json::from_str::<ProgName>(&too_long).unwrap_err();
     assert!(err.to_string().contains("at most 64 bytes"), "{err}");
 
+    json_round_trip(&Form::Checksum, r#""checksum""#);
     json_round_trip(
         &robowire::pixy2::Framing::<Host>::new().checksum_only(),
         r#"{"checksum_only":true}"#,
@@ -384,14 +386,14 @@ fn serde_pixy2_requests() {
 #[cfg(feature = "serde")]
 #[test]
 fn serde_pixy2_owned_blocks_response() {
-    use robowire::pixy2::{self, Block, BlocksBuf, Packet, Response, ResponseBuf, MAX_BLOCKS};
+    use robowire::pixy2::{self, Block, BlocksBuf, Envelope, Response, ResponseBuf, MAX_BLOCKS};
 
     let bytes = [
         0xaf, 0xc1, 0x21, 0x0e, 0xb7, 0x01, 0x01, 0x00, 0x64, 0x00, 0x32, 0x00, 0x14, 0x00, 0x0a,
         0x00, 0x00, 0x00, 0x03, 0xff,
     ];
     let mut decoder = pixy2::host_decoder();
-    let owned: Vec<Packet<ResponseBuf>> = decoder
+    let owned: Vec<Envelope<ResponseBuf>> = decoder
         .feed(&bytes)
         .map(|event| event.unwrap().message)
         .collect();
@@ -400,7 +402,7 @@ fn serde_pixy2_owned_blocks_response() {
         r#"{"signature":1,"x":100,"y":50,"width":20,"height":10,"angle":0,"index":3,"age":255}"#;
     json_round_trip(
         &owned[0],
-        &format!(r#"{{"form":"Checksum","body":{{"Blocks":[{block_json}]}}}}"#),
+        &format!(r#"{{"type":"blocks","checksum":true,"blocks":[{block_json}]}}"#),
     );
 
     // The borrowed response, straight from the frame, serializes as the owned one.
@@ -426,8 +428,8 @@ fn serde_pixy2_owned_blocks_response() {
 #[test]
 fn serde_pixy2_owned_features_response() {
     use robowire::pixy2::{
-        Barcode, DeviceError, Error, Features, FeaturesBuf, Intersection, IntersectionLine,
-        Malformed, PairError, Response, ResponseBuf, Vector,
+        Barcode, DeviceError, Error, FeaturesBuf, Intersection, IntersectionLine, Malformed,
+        PairError, Response, ResponseBuf, Vector,
     };
 
     let vector = Vector {
@@ -445,14 +447,19 @@ fn serde_pixy2_owned_features_response() {
         code: 5,
     };
     let features = FeaturesBuf::from_parts(&[vector], &[], &[barcode]).unwrap();
+    let sections = concat!(
+        r#"[{"vectors":[{"x0":10,"y0":51,"x1":40,"y1":2,"index":7,"flags":0}]},"#,
+        r#"{"barcodes":[{"x":30,"y":20,"flags":0,"code":5}]}]"#
+    );
     json_round_trip(
         &ResponseBuf::Features(features),
-        r#"{"Features":[1,6,10,51,40,2,7,0,4,4,30,20,0,5]}"#,
+        &format!(r#"{{"type":"features","sections":{sections}}}"#),
     );
     assert_eq!(
         serde_json::to_string(&Response::Features(features.view())).unwrap(),
-        r#"{"Features":[1,6,10,51,40,2,7,0,4,4,30,20,0,5]}"#
+        format!(r#"{{"type":"features","sections":{sections}}}"#)
     );
+    json_round_trip(&features, sections);
 
     // Intersections and sections of unknown types keep every byte.
     let mut slots = [IntersectionLine::default(); 6];
@@ -461,6 +468,7 @@ fn serde_pixy2_owned_features_response() {
         reserved: 9,
         angle: -90,
     };
+    slots[3].index = 4;
     let crossing = Intersection {
         x: 39,
         y: 20,
@@ -468,44 +476,58 @@ fn serde_pixy2_owned_features_response() {
         reserved: 0,
         slots,
     };
+    json_round_trip(
+        &crossing,
+        concat!(
+            r#"{"x":39,"y":20,"lines":[{"index":1,"angle":-90,"reserved":9}],"#,
+            r#""unused_slots":[{"index":0,"angle":0},{"index":0,"angle":0},"#,
+            r#"{"index":4,"angle":0},{"index":0,"angle":0},{"index":0,"angle":0}]}"#
+        ),
+    );
     let with_crossing = FeaturesBuf::from_parts(&[vector], &[crossing], &[]).unwrap();
     let mut payload = with_crossing.view().as_bytes().to_vec();
     payload.extend_from_slice(&[0x08, 0x02, 0xaa, 0xbb]);
     let unknown = FeaturesBuf::from_payload(&payload).unwrap();
     let json = serde_json::to_string(&unknown).unwrap();
+    assert!(json.ends_with(r#"{"ftype":8,"data":[170,187]}]"#), "{json}");
     let back = serde_json::from_str::<FeaturesBuf>(&json).unwrap();
     assert_eq!(back, unknown);
     assert_eq!(back.view().intersections().next(), Some(crossing));
 
-    // Payloads a view would refuse are refused.
-    for bad in [
-        "[2,3,0,0,0]", // not whole intersections
-        "[1,6,0,0,0]", // section past the end
-        "[2,28,0,0,7,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0]", // 7 lines
-    ] {
-        assert!(serde_json::from_str::<FeaturesBuf>(bad).is_err(), "{bad}");
-    }
-    let too_long = format!("[{}]", ["0"; 256].join(","));
-    let err = serde_json::from_str::<FeaturesBuf>(&too_long).unwrap_err();
-    assert!(err.to_string().contains("at most 255 bytes"), "{err}");
-
-    // A borrowed view deserializes only from borrowed bytes, never from JSON's array.
-    assert!(serde_json::from_str::<Features<'_>>("[1,6,10,51,40,2,7,0]").is_err());
+    // What a features payload cannot hold is refused, naming the field.
+    let seven = format!(
+        r#"[{{"intersections":[{{"x":1,"y":2,"lines":[{}]}}]}}]"#,
+        [r#"{"index":1,"angle":0}"#; 7].join(",")
+    );
+    let err = serde_json::from_str::<FeaturesBuf>(&seven).unwrap_err();
+    assert!(
+        err.to_string().starts_with(
+            "field `sections[0].intersections[0].lines` holds 7 entries, at most 6 fit"
+        ),
+        "{err}"
+    );
+    let err = serde_json::from_str::<FeaturesBuf>(r#"[{"ftype":2,"data":[]}]"#).unwrap_err();
+    assert!(err.to_string().contains("is a known feature type"), "{err}");
 
     json_round_trip(
         &ResponseBuf::Error(DeviceError::Unknown(-9)),
-        r#"{"Error":{"Unknown":-9}}"#,
+        r#"{"type":"error","code":-9}"#,
     );
+    json_round_trip(&DeviceError::Busy, r#""busy""#);
     json_round_trip(
         &Error::Malformed {
             packet_type: 0x31,
             what: Malformed::IntersectionLines { n: 7 },
         },
-        r#"{"Malformed":{"packet_type":49,"what":{"IntersectionLines":{"n":7}}}}"#,
+        r#"{"error":"malformed","packet_type":49,"what":"intersection_lines","n":7}"#,
+    );
+    json_round_trip(
+        &Malformed::SectionPastEnd { offset: 3 },
+        r#"{"what":"section_past_end","section_offset":3}"#,
     );
     json_round_trip(
         &PairError::Device(DeviceError::Busy),
-        r#"{"Device":"Busy"}"#,
+        r#"{"Device":"busy"}"#,
     );
 }
 
@@ -551,21 +573,4 @@ fn serde_telemetrix_is_the_json_lines_schema() {
         .unwrap(),
         r#"{"error":"out_of_range","id":1,"field":"pin"}"#
     );
-}
-
-/// Borrowed views deserialize from formats that hand out borrowed bytes.
-#[cfg(feature = "serde")]
-#[test]
-fn serde_borrowed_views_borrow_bytes() {
-    use robowire::pixy2::{Features, FeaturesBuf, Vector};
-    use serde::de::value::{BorrowedBytesDeserializer, Error};
-    use serde::Deserialize;
-
-    let owned = FeaturesBuf::from_parts(&[Vector::default()], &[], &[]).unwrap();
-    let bytes = owned.view().as_bytes();
-    let view = Features::deserialize(BorrowedBytesDeserializer::<Error>::new(bytes)).unwrap();
-    assert_eq!(view, owned.view());
-    assert!(core::ptr::eq(view.as_bytes(), bytes));
-    let bad = Features::deserialize(BorrowedBytesDeserializer::<Error>::new(&[1, 6, 0]));
-    assert!(bad.is_err());
 }

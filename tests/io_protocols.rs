@@ -120,7 +120,7 @@ mod tokio_codec {
 mod embedded {
     use super::*;
     use robowire::io::embedded_io::{PacketReader, PacketWriter};
-    use robowire::pixy2::{self, DeviceError, Form, Packet, Request, ResponseBuf};
+    use robowire::pixy2::{self, DeviceError, Envelope, Form, Request, ResponseBuf};
     use robowire::telemetrix::{Device, DeviceDecoder, Framing, Host, HostDecoder, Report};
 
     #[test]
@@ -140,7 +140,7 @@ mod embedded {
         let mut uart = [0u8; 32];
         let mut writer: PacketWriter<&mut [u8], 261> = PacketWriter::new(&mut uart[..]);
         let n = writer
-            .send(&Packet::new(Form::Checksum, ResponseBuf::Result(61)))
+            .send(&Envelope::new(Form::Checksum, ResponseBuf::Result(61)))
             .unwrap();
         assert_eq!(&uart[..n], &hex("af c1 01 04 3d 00 3d 00 00 00")[..]);
 

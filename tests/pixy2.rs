@@ -4,8 +4,8 @@
 
 use robowire::pixy2::{
     self, packet_type as ty, Barcode, Block, BlocksBuf, Both, ChangeProg, Device, DeviceError,
-    Error, FeaturesBuf, Form, Framing, GetBlocks, GetFeatures, GetFps, GetResolution, GetRgb,
-    GetVersion, Host, Intersection, IntersectionLine, Malformed, Message, MessageBuf, Packet,
+    Envelope, Error, FeaturesBuf, Form, Framing, GetBlocks, GetFeatures, GetFps, GetResolution,
+    GetRgb, GetVersion, Host, Intersection, IntersectionLine, Malformed, Message, MessageBuf,
     PairError, ProgName, ProgSwitch, Query, Request, Resolution, Response, ResponseBuf,
     ReverseVector, Rgb, Section, SetCameraBrightness, SetDefaultTurn, SetLamp, SetLed, SetMode,
     SetNextTurn, SetServos, SetVector, Side, Vector, Version,
@@ -70,12 +70,12 @@ fn encode<M: Encode>(m: &M) -> Vec<u8> {
     frame.to_vec()
 }
 
-fn plain<M>(body: M) -> Packet<M> {
-    Packet::new(Form::NoChecksum, body)
+fn plain<M>(body: M) -> Envelope<M> {
+    Envelope::new(Form::NoChecksum, body)
 }
 
-fn summed<M>(body: M) -> Packet<M> {
-    Packet::new(Form::Checksum, body)
+fn summed<M>(body: M) -> Envelope<M> {
+    Envelope::new(Form::Checksum, body)
 }
 
 // ---------------------------------------------------------------- requests
@@ -916,7 +916,7 @@ fn every_proper_prefix_needs_more() {
     let requests = request_vectors().into_iter().map(|(b, _)| hex(&b));
     for wire in responses.chain(requests) {
         for cut in 1..wire.len() {
-            let mut decoder = pixy2::decoder();
+            let mut decoder = pixy2::both_decoder();
             let mut input = &wire[..cut];
             assert!(
                 decoder.decode(&mut input).is_none(),

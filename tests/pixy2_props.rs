@@ -4,11 +4,11 @@
 
 use proptest::prelude::*;
 use robowire::pixy2::{
-    self, Barcode, Block, BlocksBuf, Both, ChangeProg, DeviceError, Features, FeaturesBuf,
-    FirmwareType, Form, Framing, GetBlocks, GetFeatures, GetFps, GetResolution, GetRgb, GetVersion,
-    Host, Intersection, IntersectionLine, MessageBuf, Packet, ProgName, Request, Resolution,
-    ResponseBuf, ReverseVector, Section, SetCameraBrightness, SetDefaultTurn, SetLamp, SetLed,
-    SetMode, SetNextTurn, SetServos, SetVector, Vector, Version,
+    self, Barcode, Block, BlocksBuf, Both, ChangeProg, DeviceError, Envelope, Features,
+    FeaturesBuf, FirmwareType, Form, Framing, GetBlocks, GetFeatures, GetFps, GetResolution,
+    GetRgb, GetVersion, Host, Intersection, IntersectionLine, MessageBuf, ProgName, Request,
+    Resolution, ResponseBuf, ReverseVector, Section, SetCameraBrightness, SetDefaultTurn, SetLamp,
+    SetLed, SetMode, SetNextTurn, SetServos, SetVector, Vector, Version,
 };
 use robowire::{Encode, FrameBuf, OwnedEvent, StreamDecoder};
 
@@ -124,7 +124,7 @@ fn response() -> impl Strategy<Value = ResponseBuf> {
     ]
 }
 
-fn message() -> impl Strategy<Value = Packet<MessageBuf>> {
+fn message() -> impl Strategy<Value = Envelope<MessageBuf>> {
     (
         form(),
         prop_oneof![
@@ -132,7 +132,7 @@ fn message() -> impl Strategy<Value = Packet<MessageBuf>> {
             response().prop_map(MessageBuf::Response),
         ],
     )
-        .prop_map(|(f, m)| Packet::new(f, m))
+        .prop_map(|(f, m)| Envelope::new(f, m))
 }
 
 fn encode<M: Encode>(m: &M) -> Vec<u8> {
@@ -143,7 +143,7 @@ fn encode<M: Encode>(m: &M) -> Vec<u8> {
 }
 
 fn decode_any(input: &[u8], chunk: usize) -> Vec<OwnedEvent<Framing<Both>>> {
-    let mut d = pixy2::decoder();
+    let mut d = pixy2::both_decoder();
     let mut events = Vec::new();
     for piece in input.chunks(chunk.max(1)) {
         events.extend(d.feed(piece));
@@ -160,7 +160,7 @@ proptest! {
 
     #[test]
     fn request_round_trips(request in request(), form in form()) {
-        let packet = Packet::new(form, request);
+        let packet = Envelope::new(form, request);
         let wire = encode(&packet);
         let mut d = pixy2::device_decoder();
         let events: Vec<_> = d.feed(&wire).collect();
@@ -174,13 +174,13 @@ proptest! {
         prop_assert_eq!(any.len(), 1);
         prop_assert_eq!(
             any[0].as_ref().unwrap().message,
-            Packet::new(form, MessageBuf::Request(request))
+            Envelope::new(form, MessageBuf::Request(request))
         );
     }
 
     #[test]
     fn response_round_trips(response in response(), form in form()) {
-        let packet = Packet::new(form, response);
+        let packet = Envelope::new(form, response);
         let wire = encode(&packet);
         let mut d = pixy2::host_decoder();
         let mut input = &wire[..];
@@ -190,7 +190,7 @@ proptest! {
         // Borrowed message re-encodes to the same bytes, and so does its
         // owned copy.
         prop_assert_eq!(encode(&frame.message), wire.clone());
-        let owned = Packet::new(frame.message.form, frame.message.body.to_owned());
+        let owned = Envelope::new(frame.message.form, frame.message.body.to_owned());
         prop_assert_eq!(owned, packet);
         prop_assert_eq!(encode(&owned), wire.clone());
     }
@@ -272,7 +272,7 @@ proptest! {
         }
         let whole = decode_any(&wire, wire.len());
         prop_assert_eq!(&decode_any(&wire, chunk), &whole);
-        let mut d = pixy2::decoder();
+        let mut d = pixy2::both_decoder();
         let mut events = Vec::new();
         for &b in &wire {
             if let Some(e) = d.push(b) {
@@ -291,7 +291,7 @@ proptest! {
         wire in prop::collection::vec(
             prop_oneof![any::<u8>(), Just(0xae), Just(0xaf), Just(0xc1)], 0..300),
     ) {
-        let mut d = pixy2::decoder();
+        let mut d = pixy2::both_decoder();
         let mut input = &wire[..];
         while let Some(event) = d.decode(&mut input) {
             if let Ok(frame) = event {

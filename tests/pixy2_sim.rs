@@ -113,7 +113,7 @@ fn host_learns_what_the_camera_shows() {
 #[test]
 fn every_answer_in_the_capture_answers_the_request_before_it() {
     let bytes = hex(&committed());
-    let mut decoder = pixy2::decoder();
+    let mut decoder = pixy2::both_decoder();
     let mut events: Vec<_> = decoder.feed(&bytes).collect();
     events.extend(decoder.flush());
     let mut pending: Option<Request> = None;

@@ -19,11 +19,11 @@ use std::sync::mpsc::{self, Receiver, Sender};
 use std::thread;
 
 use robowire::pixy2::{
-    self, Barcode, Block, BlocksBuf, ChangeProg, DeviceError, Error, FeaturesBuf, Form, GetBlocks,
-    GetFeatures, GetFps, GetResolution, GetRgb, GetVersion, HostDecoder, Intersection,
-    IntersectionLine, Packet, PairError, ProgName, ProgSwitch, Query, Request, Resolution,
-    ResponseBuf, ReverseVector, Rgb, SetCameraBrightness, SetDefaultTurn, SetLamp, SetLed,
-    SetNextTurn, SetServos, Vector, Version, INTERSECTION_SLOTS, MAX_BLOCKS,
+    self, Barcode, Block, BlocksBuf, ChangeProg, DeviceError, Envelope, Error, FeaturesBuf, Form,
+    GetBlocks, GetFeatures, GetFps, GetResolution, GetRgb, GetVersion, HostDecoder, Intersection,
+    IntersectionLine, PairError, ProgName, ProgSwitch, Query, Request, Resolution, ResponseBuf,
+    ReverseVector, Rgb, SetCameraBrightness, SetDefaultTurn, SetLamp, SetLed, SetNextTurn,
+    SetServos, Vector, Version, INTERSECTION_SLOTS, MAX_BLOCKS,
 };
 use robowire::{Encode, Rejected};
 
@@ -498,7 +498,7 @@ fn device(transfers: Receiver<Transfer>, miso: Sender<Vec<u8>>) -> DeviceStats {
     let mut rng = Rng(DEVICE_SEED);
     let mut queue = VecDeque::new();
     let mut stats = DeviceStats::default();
-    let mut out = [0u8; pixy2::MAX_FRAME];
+    let mut out = [0u8; pixy2::MAX_FRAME_LEN];
     for transfer in transfers {
         match transfer {
             Transfer::Write(bytes) => {
@@ -649,7 +649,7 @@ impl Host<'_> {
         f: impl Fn(Q::Answer<'_>) -> T,
     ) -> Result<T, AskError> {
         let mut bytes = [0u8; 72];
-        let n = Packet::new(form, query.request())
+        let n = Envelope::new(form, query.request())
             .encode(&mut bytes)
             .expect("requests fit in 72 bytes");
         let name = spec_name(&query.request());

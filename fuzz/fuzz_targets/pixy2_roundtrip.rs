@@ -4,7 +4,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use robowire::pixy2::{self, Packet};
+use robowire::pixy2::{self, Envelope};
 use robowire::{Encode, FrameBuf};
 
 fn same<M: Encode>(message: &M, raw: &[u8]) {
@@ -19,7 +19,7 @@ fuzz_target!(|data: &[u8]| {
     while let Some(event) = host.decode(&mut input) {
         if let Ok(frame) = event {
             same(&frame.message, frame.raw);
-            let owned = Packet::new(frame.message.form, frame.message.body.to_owned());
+            let owned = Envelope::new(frame.message.form, frame.message.body.to_owned());
             same(&owned, frame.raw);
             assert_eq!(owned.body.as_response(), frame.message.body);
         }
@@ -34,12 +34,12 @@ fuzz_target!(|data: &[u8]| {
         }
     }
 
-    let mut any = pixy2::decoder();
+    let mut any = pixy2::both_decoder();
     let mut input = data;
     while let Some(event) = any.decode(&mut input) {
         if let Ok(frame) = event {
             same(&frame.message, frame.raw);
-            let owned = Packet::new(frame.message.form, frame.message.body.to_owned());
+            let owned = Envelope::new(frame.message.form, frame.message.body.to_owned());
             same(&owned, frame.raw);
         }
     }

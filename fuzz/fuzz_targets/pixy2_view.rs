@@ -6,7 +6,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use robowire::pixy2::{
-    Blocks, Features, FeaturesBuf, Form, Intersection, Packet, Request, Response, Section,
+    Blocks, Envelope, Features, FeaturesBuf, Form, Intersection, Request, Response, Section,
 };
 use robowire::{Encode, FrameBuf};
 
@@ -52,15 +52,19 @@ fuzz_target!(|data: &[u8]| {
         assert_eq!(len, data.len());
     }
 
-    // Any payload as every type: a clean error or an exact re-encoding.
+    // Any payload as every type, in a whole frame: a clean error or an
+    // exact re-encoding.
     if data.len() <= 255 {
+        let mut frame = vec![0xae, 0xc1, 0, data.len() as u8];
+        frame.extend_from_slice(data);
         for packet_type in 0..=255u8 {
-            if let Ok(r) = Response::parse(packet_type, data) {
-                assert_eq!(payload_of(&Packet::new(Form::NoChecksum, r)), data);
+            frame[2] = packet_type;
+            if let Ok(r) = Response::try_from(&frame[..]) {
+                assert_eq!(payload_of(&Envelope::new(Form::NoChecksum, r)), data);
                 assert_eq!(r.to_owned().as_response(), r);
             }
-            if let Ok(r) = Request::parse(packet_type, data) {
-                assert_eq!(payload_of(&Packet::new(Form::NoChecksum, r)), data);
+            if let Ok(r) = Request::try_from(&frame[..]) {
+                assert_eq!(payload_of(&Envelope::new(Form::NoChecksum, r)), data);
             }
         }
     }

@@ -73,7 +73,7 @@ pub type OmniTilesCodec<Y = Messages> =
     FrameCodec<crate::omnitiles::Framing, { crate::omnitiles::BUFFER_LEN }, Y>;
 
 /// The Pixy2 host-side codec: yields responses
-/// ([`Packet<ResponseBuf>`](crate::pixy2::ResponseBuf)) and encodes requests.
+/// ([`Envelope<ResponseBuf>`](crate::pixy2::Envelope)) and encodes requests.
 pub type Pixy2HostCodec<Y = Messages> =
     FrameCodec<crate::pixy2::Framing<crate::pixy2::Host>, { crate::pixy2::HOST_BUFFER }, Y>;
 

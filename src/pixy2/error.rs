@@ -1,6 +1,10 @@
 //! The two kinds of error kept apart: what the codec found wrong with bytes
 //! ([`Error`], [`Malformed`]) and what the device said went wrong
-//! ([`DeviceError`], carried by an ERROR packet).
+//! ([`DeviceError`], carried by an ERROR packet); and [`NameError`], a name
+//! that names nothing.
+
+use core::fmt;
+use core::str::FromStr;
 
 /// Why a candidate frame was rejected or a frame's payload could not be parsed.
 ///
@@ -8,7 +12,12 @@
 /// decoder reports them and goes on. What the *device* reports in an ERROR
 /// packet is a [`DeviceError`] inside a successfully decoded
 /// [`Response::Error`](super::Response::Error).
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+///
+/// With the `serde` feature an error is an object with an `error` tag and its
+/// details, as `robowire decode pixy2 --errors` prints it:
+/// `{"error":"checksum","expected":781,"found":780}`,
+/// `{"error":"bad_length","packet_type":18,"payload_len":3}`,
+/// `{"error":"malformed","packet_type":49,"what":"section_length","ftype":1,"flen":5}`.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
@@ -67,6 +76,13 @@ pub enum Error {
         /// The candidate's length.
         len: usize,
     },
+    /// A slice given as one whole frame (`TryFrom<&[u8]>`) goes on past the
+    /// frame its header describes.
+    #[error("{extra} bytes follow the frame")]
+    TrailingBytes {
+        /// Bytes after the frame's end.
+        extra: usize,
+    },
     /// The header and (if present) the checksum are fine but the payload's
     /// contents are not (spec §7.4 item 5, §4.3).
     #[error("packet type 0x{packet_type:02x}: {what}")]
@@ -79,7 +95,10 @@ pub enum Error {
 }
 
 /// What is wrong inside a payload whose length fits its type.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+///
+/// With the `serde` feature: an object with a `what` tag and its details
+/// (`{"what":"intersection_lines","n":7}`), the part of an
+/// [`Error::Malformed`] after its `packet_type`.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
@@ -131,7 +150,13 @@ pub enum Malformed {
 /// These are the device's `SER_ERROR_*` codes. The official host library
 /// reuses −3 and −4 for its own local failures; robowire never does: local
 /// failures are [`Error`]s.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+///
+/// The six known codes have names ([`DeviceError::NAMES`], after
+/// `SER_ERROR_*`): `general`, `busy`, `invalid_request`, `type_unsupported`,
+/// `button_override`, `prog_changing`. [`FromStr`] reads a name or any code
+/// as a number; with the `serde` feature a known code is its name, any other
+/// code its number (`"busy"`, `-7`), as in the `code` of an ERROR response.
+/// [`Display`](fmt::Display) is the error message (`device error -2: busy`).
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
 pub enum DeviceError {
@@ -160,6 +185,25 @@ pub enum DeviceError {
 }
 
 impl DeviceError {
+    /// The names of the six known codes, −1 to −6.
+    pub const NAMES: [&'static str; 6] = [
+        "general",
+        "busy",
+        "invalid_request",
+        "type_unsupported",
+        "button_override",
+        "prog_changing",
+    ];
+
+    /// The name of a known code; `None` for [`DeviceError::Unknown`].
+    pub const fn name(self) -> Option<&'static str> {
+        match self {
+            Self::Unknown(_) => None,
+            // −1..=−6 map to 0..=5.
+            known => Some(Self::NAMES[(-1 - known.code() as i16) as usize]),
+        }
+    }
+
     /// The error for a code as sent on the wire.
     pub const fn from_code(code: i8) -> Self {
         match code {
@@ -186,3 +230,55 @@ impl DeviceError {
         }
     }
 }
+
+/// Reads a name of [`DeviceError::NAMES`] or a code as a decimal number
+/// (`busy`, `-2`, `-7`).
+impl FromStr for DeviceError {
+    type Err = NameError;
+
+    fn from_str(s: &str) -> Result<Self, NameError> {
+        if let Some(i) = Self::NAMES.iter().position(|n| *n == s) {
+            return Ok(Self::from_code(-1 - i as i8));
+        }
+        s.parse::<i8>()
+            .map(Self::from_code)
+            .map_err(|_| NameError::new("device error", &Self::NAMES))
+    }
+}
+
+/// A name that names nothing, from a `FromStr` of a Pixy2 type.
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NameError {
+    what: &'static str,
+    names: &'static [&'static str],
+}
+
+impl NameError {
+    pub(crate) const fn new(what: &'static str, names: &'static [&'static str]) -> Self {
+        Self { what, names }
+    }
+
+    /// What was being named (`"frame form"`, `"device error"` …).
+    pub const fn what(&self) -> &'static str {
+        self.what
+    }
+
+    /// The names that would have been accepted.
+    pub const fn names(&self) -> &'static [&'static str] {
+        self.names
+    }
+}
+
+impl fmt::Display for NameError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "no {} is called that (expected ", self.what)?;
+        for (i, name) in self.names.iter().enumerate() {
+            let sep = if i == 0 { "" } else { ", " };
+            write!(f, "{sep}{name}")?;
+        }
+        f.write_str(")")
+    }
+}
+
+impl core::error::Error for NameError {}

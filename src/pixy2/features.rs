@@ -15,7 +15,7 @@ use core::slice::ChunksExact;
 use crate::encode::EncodeError;
 
 use super::error::Malformed;
-use super::packet::MAX_PAYLOAD;
+use super::wire::MAX_PAYLOAD;
 
 mod sealed {
     pub trait Sealed {}
@@ -91,7 +91,9 @@ impl Element for Vector {
 }
 
 /// One line leaving an intersection. 4 bytes.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+///
+/// With the `serde` feature: `{"index":2,"angle":90}`, with `reserved` only
+/// when it is not 0.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct IntersectionLine {
@@ -109,7 +111,10 @@ pub const INTERSECTION_SLOTS: usize = 6;
 
 /// An intersection with its lines. 28 bytes: x, y, n, reserved and six line
 /// slots (slots ≥ n are zero when the device sends them).
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+///
+/// With the `serde` feature: `x`, `y`, `reserved` (only when not 0), `lines`
+/// (the `n` valid lines) and `unused_slots` (the `6 - n` slots after them,
+/// only when one is not all zero), as `robowire decode pixy2` prints it.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Intersection {
@@ -254,12 +259,11 @@ fn next_section<'a>(rest: &mut &'a [u8]) -> Option<(u8, &'a [u8])> {
 
 /// A validated line features payload, borrowed.
 ///
-/// With the `serde` feature it serializes as the payload bytes (a byte
-/// string; an array of numbers in JSON), as [`FeaturesBuf`] does, so unknown
-/// sections and reserved bytes survive. Deserializing borrows the bytes and
-/// checks them as [`Features::new`] does; only formats that hand out borrowed
-/// bytes can do that (postcard, bincode; not JSON): deserialize a
-/// [`FeaturesBuf`] for any format.
+/// With the `serde` feature it serializes as its sections in wire order,
+/// as `robowire decode pixy2` prints a features response's `sections`:
+/// `[{"vectors":[…]},{"intersections":[…]},{"barcodes":[…]}]`, a section of a
+/// type this codec does not know as `{"ftype":8,"data":[…]}`. Unknown
+/// sections and reserved bytes survive. Only [`FeaturesBuf`] deserializes.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Features<'a> {
     bytes: &'a [u8],
@@ -432,9 +436,9 @@ impl<T: Element> FusedIterator for FeatureIter<'_, T> {}
 /// An owned line features payload in a fixed 255-byte array (no allocation).
 /// It keeps the exact bytes, so it re-encodes to what was received.
 ///
-/// With the `serde` feature it serializes as the payload bytes (a byte
-/// string; an array of numbers in JSON). Deserializing refuses more than 255
-/// bytes and a payload that [`Features::new`] rejects.
+/// With the `serde` feature it serializes as [`Features`] does, its
+/// sections. Deserializing refuses a payload over 255 bytes and one that
+/// [`Features::new`] rejects, with messages that name the field.
 #[derive(Clone, Copy)]
 pub struct FeaturesBuf {
     bytes: [u8; MAX_PAYLOAD],
@@ -531,43 +535,6 @@ impl Eq for FeaturesBuf {}
 impl fmt::Debug for FeaturesBuf {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         self.view().fmt(f)
-    }
-}
-
-#[cfg(feature = "serde")]
-impl serde::Serialize for Features<'_> {
-    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        crate::serde_support::serialize_bytes(self.bytes, serializer)
-    }
-}
-
-#[cfg(feature = "serde")]
-impl<'de: 'a, 'a> serde::Deserialize<'de> for Features<'a> {
-    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let bytes = <&'a [u8] as serde::Deserialize>::deserialize(deserializer)?;
-        Features::new(bytes).map_err(serde::de::Error::custom)
-    }
-}
-
-#[cfg(feature = "serde")]
-impl serde::Serialize for FeaturesBuf {
-    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serde::Serialize::serialize(&self.view(), serializer)
-    }
-}
-
-#[cfg(feature = "serde")]
-impl<'de> serde::Deserialize<'de> for FeaturesBuf {
-    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let mut buf = FeaturesBuf::new();
-        let len = crate::serde_support::bytes_into(
-            deserializer,
-            &mut buf.bytes,
-            "a Pixy2 line features payload",
-        )?;
-        validate(&buf.bytes[..len]).map_err(serde::de::Error::custom)?;
-        buf.len = len as u8;
-        Ok(buf)
     }
 }
 

@@ -1,40 +1,90 @@
-//! Where frames are in a byte stream: sync search, header checks by
-//! direction, checksum, and the content checks that decide between "not a
-//! frame" and "a frame with a bad payload".
+//! Where frames are in a byte stream, what is rejected where, and why: the
+//! Pixy2 decoding policy.
 //!
-//! Policy (spec §7.4):
+//! Three decoders, one per side: [`HostDecoder`](super::HostDecoder)
+//! (responses), [`DeviceDecoder`](super::DeviceDecoder) (requests, with the
+//! device's 64-byte receive limit), [`BothDecoder`](super::BothDecoder) (both,
+//! for captures). All accept both forms; `Framing::new().checksum_only()`
+//! accepts only `af c1` (right for a serial host: the device always sends a
+//! checksum there; then no unverifiable frame can be decoded).
+//!
+//! | what | where it is caught | event |
+//! |---|---|---|
+//! | SPI idle filler `0x01`, a doubled first sync byte (`af af c1`), `0xae`/`0xaf` not followed by `0xc1`, other garbage | sync search (`memchr` for `0xc1`, one byte back) | none (counted in [`Stats::skipped`](crate::Stats::skipped)); [`Error::Sync`] is kept for a slice parsed as one frame (`try_from`) |
+//! | a type the side does not accept (unknown, or the other direction's) | header, byte 3 | [`Error::UnknownType`] |
+//! | a length the type cannot have: RESULT ≠ 4, ERROR ≠ 1, resolution ≠ 4, version ≠ 16, blocks ≠ 14·k (k ≤ 18), request lengths per type | header, byte 4 | [`Error::BadLength`] |
+//! | a request payload over 64 bytes (device and both-direction decoders) | header, byte 4 | [`Error::TooLong`] |
+//! | checksum mismatch | full frame | [`Error::Checksum`] |
+//! | malformed content: line section past the end or not a multiple of its element size, intersection `n` > 6, getBlocks sigmap 0 | **no-checksum form**: in framing, the candidate is rejected and everything after its first byte is rescanned. **Checksum form**: after the checksum passed, the frame is consumed and reported ([`Stats::malformed`](crate::Stats::malformed)) | [`Error::Malformed`] |
+//! | input ends inside a candidate | `finish`/`flush` | [`Error::Truncated`] |
+//!
+//! In detail (spec §7.4):
 //!
 //! * Both sync words are found by a sliding search (`memchr` for `0xc1`, then
-//!   one byte back). SPI filler (`0x01`), junk and a doubled first sync byte
-//!   (`af af c1 …`) are skipped as garbage, silently. A first sync byte at the
-//!   end of a chunk is kept as a possible start; if the next chunk shows it
-//!   is none, the engine drops it silently too, so the output does not depend
-//!   on the chunking.
-//! * The header is checked as soon as its bytes are there: a type this side
-//!   does not accept is [`Error::UnknownType`], a length the type cannot have
-//!   is [`Error::BadLength`], a request over the device's 64-byte limit is
-//!   [`Error::TooLong`]. The candidate is rejected before its payload arrives.
-//! * Checksum form: the checksum is verified ([`Error::Checksum`]). A frame
-//!   whose checksum is right but whose payload is malformed (line sections
-//!   that do not fit, an intersection with more than 6 lines, getBlocks with
-//!   signature map 0) is consumed and reported as [`Error::Malformed`] after
-//!   parsing: its bytes are what the sender sent, so nothing inside it is
-//!   rescanned.
-//! * No-checksum form: the same content checks run inside framing, so a
-//!   malformed payload rejects the candidate and the bytes after its first
-//!   byte are rescanned; a real frame that began inside it is found.
+//!   one byte back). A first sync byte at the end of a chunk is kept as a
+//!   possible start; if the next chunk shows it is none, the engine drops it
+//!   silently too, so the output does not depend on the chunking.
+//! * The header is checked as soon as its bytes are there: the candidate is
+//!   rejected before its payload arrives.
+//! * Why content errors split by form: a checksummed frame's bytes are
+//!   exactly what the sender sent, so nothing inside it is rescanned; an
+//!   `ae c1` frame has nothing vouching for it, so a payload that cannot be
+//!   real means it was not a frame, and a real frame that began inside it is
+//!   still found.
 //! * Every rejection drops only the candidate's first byte (the engine's
 //!   resync by one).
+//!
+//! Errors stay apart: [`Error`] is what the codec found wrong with bytes;
+//! [`DeviceError`](super::DeviceError) (general, busy, invalid request, type
+//! unsupported, button override, prog changing, `Unknown(i8)` for any other
+//! code) is what the device said in an ERROR packet;
+//! [`PairError`](super::PairError) is a response that does not answer the
+//! request. RESULT is decoded as the full i32 (getFPS and getRGB read it as
+//! u32 / `0x00RRGGBB`).
+//!
+//! A simulator mirrors the device like this: `BadLength` or `Malformed` on a
+//! request → answer ERROR −3; `UnknownType` → ERROR −4; `Checksum`, `TooLong`
+//! → no answer. Two differences from the firmware, both deliberate: after
+//! dropping a request the decoder rescans the dropped bytes (the firmware
+//! does not), and a wrong length is rejected from the header before the
+//! checksum is verified (the firmware verifies first, so it silently drops a
+//! wrong-length request whose checksum is also wrong).
+//!
+//! # What cannot be detected
+//!
+//! * A frame in the no-checksum form is checked only for a plausible type,
+//!   length and content. Garbage that happens to hold `ae c1`, a known type
+//!   and a plausible length decodes as a frame (and may swallow the start of
+//!   a real one). Use [`Framing::checksum_only`] where the sender always uses
+//!   the checksum form.
+//! * The checksum is a plain sum over the payload: reordered bytes and
+//!   compensating errors pass, and the header (type, length) is not covered.
+//!   A type flipped to another type with the same length (RESULT ↔
+//!   resolution) decodes; [`Query::answer`](super::Query::answer) then
+//!   reports [`PairError::WrongType`](super::PairError::WrongType).
+//! * Which request a response answers: the protocol has no sequence numbers.
+//!   `Query::answer` checks the type and plausibility; a stale answer of the
+//!   same type is indistinguishable.
+//!
+//! # One whole frame
+//!
+//! `TryFrom<&[u8]>` parses a slice that is exactly one frame, sync word
+//! included, with the same checks as the decoder of the message's side
+//! ([`Request`]: [`Device`]; [`Response`], [`ResponseBuf`]: [`Host`];
+//! [`Message`], [`MessageBuf`]: [`Both`]); an [`Envelope`] of any of them
+//! keeps the form. A slice cut short is [`Error::Truncated`], bytes after the
+//! frame are [`Error::TrailingBytes`].
 
 use core::marker::PhantomData;
 
 pub use crate::side::{Both, Device, Host};
 use crate::stream::{self, Check};
 
+use super::envelope::{Envelope, Message, MessageBuf};
 use super::error::Error;
-use super::packet::{checksum, Form, Message, MessageBuf, Packet, DEVICE_MAX_PAYLOAD, MAX_FRAME};
 use super::request::{check_request_header, request_len, Request};
 use super::response::{check_response_header, is_response_type, Response, ResponseBuf};
+use super::wire::{checksum, Form, DEVICE_MAX_PAYLOAD, MAX_FRAME_LEN};
 
 mod sealed {
     pub trait Sealed {}
@@ -48,7 +98,10 @@ pub trait Side: sealed::Sealed + Copy + Eq + core::hash::Hash + core::fmt::Debug
     /// Its owned form.
     type Owned;
     /// Longest frame a candidate can grow to.
-    const MAX_FRAME: usize;
+    const MAX_FRAME_LEN: usize;
+    /// The old name of [`Side::MAX_FRAME_LEN`].
+    #[deprecated(since = "0.2.0", note = "renamed to `MAX_FRAME_LEN`")]
+    const MAX_FRAME: usize = Self::MAX_FRAME_LEN;
     /// Whether `packet_type` is accepted at all.
     fn accepts_type(packet_type: u8) -> bool;
     /// Check the type and length bytes of a header.
@@ -64,9 +117,9 @@ impl sealed::Sealed for Device {}
 impl sealed::Sealed for Both {}
 
 impl Side for Host {
-    type Message<'a> = Packet<Response<'a>>;
-    type Owned = Packet<ResponseBuf>;
-    const MAX_FRAME: usize = MAX_FRAME;
+    type Message<'a> = Envelope<Response<'a>>;
+    type Owned = Envelope<ResponseBuf>;
+    const MAX_FRAME_LEN: usize = MAX_FRAME_LEN;
 
     fn accepts_type(packet_type: u8) -> bool {
         is_response_type(packet_type)
@@ -77,18 +130,18 @@ impl Side for Host {
     }
 
     fn parse(form: Form, packet_type: u8, payload: &[u8]) -> Result<Self::Message<'_>, Error> {
-        Response::parse(packet_type, payload).map(|body| Packet::new(form, body))
+        Response::from_payload(packet_type, payload).map(|body| Envelope::new(form, body))
     }
 
     fn to_owned(message: Self::Message<'_>) -> Self::Owned {
-        Packet::new(message.form, message.body.to_owned())
+        Envelope::new(message.form, message.body.to_owned())
     }
 }
 
 impl Side for Device {
-    type Message<'a> = Packet<Request>;
-    type Owned = Packet<Request>;
-    const MAX_FRAME: usize = 6 + DEVICE_MAX_PAYLOAD;
+    type Message<'a> = Envelope<Request>;
+    type Owned = Envelope<Request>;
+    const MAX_FRAME_LEN: usize = 6 + DEVICE_MAX_PAYLOAD;
 
     fn accepts_type(packet_type: u8) -> bool {
         request_len(packet_type).is_some()
@@ -99,7 +152,7 @@ impl Side for Device {
     }
 
     fn parse(form: Form, packet_type: u8, payload: &[u8]) -> Result<Self::Message<'_>, Error> {
-        Request::parse(packet_type, payload).map(|body| Packet::new(form, body))
+        Request::from_payload(packet_type, payload).map(|body| Envelope::new(form, body))
     }
 
     fn to_owned(message: Self::Message<'_>) -> Self::Owned {
@@ -108,9 +161,9 @@ impl Side for Device {
 }
 
 impl Side for Both {
-    type Message<'a> = Packet<Message<'a>>;
-    type Owned = Packet<MessageBuf>;
-    const MAX_FRAME: usize = MAX_FRAME;
+    type Message<'a> = Envelope<Message<'a>>;
+    type Owned = Envelope<MessageBuf>;
+    const MAX_FRAME_LEN: usize = MAX_FRAME_LEN;
 
     fn accepts_type(packet_type: u8) -> bool {
         Host::accepts_type(packet_type) || Device::accepts_type(packet_type)
@@ -126,15 +179,15 @@ impl Side for Both {
 
     fn parse(form: Form, packet_type: u8, payload: &[u8]) -> Result<Self::Message<'_>, Error> {
         let body = if is_response_type(packet_type) {
-            Message::Response(Response::parse(packet_type, payload)?)
+            Message::Response(Response::from_payload(packet_type, payload)?)
         } else {
-            Message::Request(Request::parse(packet_type, payload)?)
+            Message::Request(Request::from_payload(packet_type, payload)?)
         };
-        Ok(Packet::new(form, body))
+        Ok(Envelope::new(form, body))
     }
 
     fn to_owned(message: Self::Message<'_>) -> Self::Owned {
-        Packet::new(message.form, message.body.to_owned())
+        Envelope::new(message.form, message.body.to_owned())
     }
 }
 
@@ -285,5 +338,109 @@ impl<S: Side> stream::FrameRules for Framing<S> {
 
     fn to_owned(message: S::Message<'_>) -> S::Owned {
         S::to_owned(message)
+    }
+}
+
+/// Parse `frame`, exactly one whole frame of side `S` (see the module docs).
+fn parse_frame<S: Side>(frame: &[u8]) -> Result<S::Message<'_>, Error> {
+    use stream::FrameRules as _;
+    let framing = Framing::<S>::new();
+    match framing.check(frame, true) {
+        Check::Frame(len) if len == frame.len() => framing.parse(frame),
+        Check::Frame(len) => Err(Error::TrailingBytes {
+            extra: frame.len() - len,
+        }),
+        Check::Need(_) => Err(Error::Truncated { len: frame.len() }),
+        Check::Reject(e) => Err(e),
+    }
+}
+
+/// One whole frame as a [`Device`] decoder reads it: either form.
+impl TryFrom<&[u8]> for Envelope<Request> {
+    type Error = Error;
+
+    fn try_from(frame: &[u8]) -> Result<Self, Error> {
+        parse_frame::<Device>(frame)
+    }
+}
+
+/// One whole frame as a [`Device`] decoder reads it, its form dropped.
+impl TryFrom<&[u8]> for Request {
+    type Error = Error;
+
+    fn try_from(frame: &[u8]) -> Result<Self, Error> {
+        parse_frame::<Device>(frame).map(|e| e.body)
+    }
+}
+
+/// One whole frame as a [`Host`] decoder reads it: either form.
+impl<'a> TryFrom<&'a [u8]> for Envelope<Response<'a>> {
+    type Error = Error;
+
+    fn try_from(frame: &'a [u8]) -> Result<Self, Error> {
+        parse_frame::<Host>(frame)
+    }
+}
+
+/// One whole frame as a [`Host`] decoder reads it, its form dropped.
+impl<'a> TryFrom<&'a [u8]> for Response<'a> {
+    type Error = Error;
+
+    fn try_from(frame: &'a [u8]) -> Result<Self, Error> {
+        parse_frame::<Host>(frame).map(|e| e.body)
+    }
+}
+
+/// One whole frame as a [`Host`] decoder reads it, owned.
+impl TryFrom<&[u8]> for Envelope<ResponseBuf> {
+    type Error = Error;
+
+    fn try_from(frame: &[u8]) -> Result<Self, Error> {
+        parse_frame::<Host>(frame).map(Host::to_owned)
+    }
+}
+
+/// One whole frame as a [`Host`] decoder reads it, owned, its form dropped.
+impl TryFrom<&[u8]> for ResponseBuf {
+    type Error = Error;
+
+    fn try_from(frame: &[u8]) -> Result<Self, Error> {
+        parse_frame::<Host>(frame).map(|e| e.body.to_owned())
+    }
+}
+
+/// One whole frame of either direction: either form.
+impl<'a> TryFrom<&'a [u8]> for Envelope<Message<'a>> {
+    type Error = Error;
+
+    fn try_from(frame: &'a [u8]) -> Result<Self, Error> {
+        parse_frame::<Both>(frame)
+    }
+}
+
+/// One whole frame of either direction, its form dropped.
+impl<'a> TryFrom<&'a [u8]> for Message<'a> {
+    type Error = Error;
+
+    fn try_from(frame: &'a [u8]) -> Result<Self, Error> {
+        parse_frame::<Both>(frame).map(|e| e.body)
+    }
+}
+
+/// One whole frame of either direction, owned.
+impl TryFrom<&[u8]> for Envelope<MessageBuf> {
+    type Error = Error;
+
+    fn try_from(frame: &[u8]) -> Result<Self, Error> {
+        parse_frame::<Both>(frame).map(Both::to_owned)
+    }
+}
+
+/// One whole frame of either direction, owned, its form dropped.
+impl TryFrom<&[u8]> for MessageBuf {
+    type Error = Error;
+
+    fn try_from(frame: &[u8]) -> Result<Self, Error> {
+        parse_frame::<Both>(frame).map(|e| e.body.to_owned())
     }
 }

@@ -19,15 +19,77 @@
 //! The official host sends requests without a checksum; the device always
 //! answers with one. Decoders accept both forms in both directions.
 //!
-//! # Sides
+//! # Vocabulary
 //!
-//! * [`HostDecoder`] accepts responses ([`Packet`]`<`[`Response`]`>`),
-//! * [`DeviceDecoder`] accepts requests ([`Packet`]`<`[`Request`]`>`), with the
-//!   device's 64-byte receive limit and a 72-byte buffer,
-//! * [`Decoder`] accepts both ([`Packet`]`<`[`Message`]`>`), for captures.
+//! | what | name |
+//! |---|---|
+//! | framing value ([`FrameRules`](crate::FrameRules)) | [`Framing<S>`](Framing), `S` one of [`Host`], [`Device`], [`Both`]; `Framing::new()`, `.checksum_only()` |
+//! | decoders | [`HostDecoder`] (responses), [`DeviceDecoder`] (requests), [`BothDecoder`] (both, for captures) |
+//! | decoder constructors | [`host_decoder()`], [`device_decoder()`], [`both_decoder()`] (`const fn`); otherwise `HostDecoder::new(Framing::new().checksum_only())` |
+//! | buffer sizes | [`HOST_BUFFER`] (528), [`DEVICE_BUFFER`] (144), [`BOTH_BUFFER`] (528) |
+//! | longest frame | [`MAX_FRAME_LEN`] (261); each message type's [`Encode::MAX_LEN`](crate::Encode::MAX_LEN) |
+//! | host → device | [`Request`] (owns everything) |
+//! | device → host | [`Response<'a>`](Response) (zero-copy), owned [`ResponseBuf`] |
+//! | either direction | [`Message<'a>`](Message), owned [`MessageBuf`] |
+//! | a message and its frame form | [`Envelope<M>`](Envelope) `{ form, body }`, what decoders yield |
+//! | one whole frame | `TryFrom<&[u8]>` for every message type and its envelope ([`framing`]) |
+//! | errors | [`Error`] (the bytes), [`DeviceError`] (an ERROR packet), [`PairError`] (a response that does not answer) |
+//! | names | [`Display`](core::fmt::Display) for every message (`get_blocks sigmap=255 max_blocks=255`); [`Request::NAMES`], [`Response::NAMES`], [`Message::NAMES`]; [`FromStr`](core::str::FromStr) for [`Form`], [`DeviceError`], [`ProgName`] |
 //!
-//! [`framing`] describes what is rejected where. A bare [`Request`] encodes
-//! without a checksum, a bare [`Response`] with one; [`Packet`] picks a form.
+//! Decoders:
+//!
+//! * [`HostDecoder`] accepts responses ([`Envelope`]`<`[`Response`]`>`),
+//! * [`DeviceDecoder`] accepts requests ([`Envelope`]`<`[`Request`]`>`), with
+//!   the device's 64-byte receive limit and a 144-byte buffer,
+//! * [`BothDecoder`] accepts both ([`Envelope`]`<`[`Message`]`>`), for
+//!   captures.
+//!
+//! [`framing`] describes what is rejected where (the decoding policy). A bare
+//! [`Request`] encodes without a checksum, as the official host sends it; a
+//! bare [`Response`] with one, as the device always answers;
+//! `Envelope::new(Form::Checksum, request)` (or `Form::NoChecksum`) picks the
+//! form. Decoders yield `Envelope { form, body }`, so every decoded frame
+//! re-encodes to its exact bytes.
+//!
+//! The encoder refuses what the device would refuse: getBlocks with signature
+//! map 0 ([`EncodeError::OutOfRange`](crate::EncodeError::OutOfRange); the
+//! device answers ERROR −3), a changeProg name over 32 bytes or with a NUL
+//! ([`ProgName::new`]), more than 18 blocks, a features payload over 255
+//! bytes or an intersection with more than 6 lines. Values the device accepts
+//! pass through unchanged, as the field docs say: servo positions above 1000
+//! (ignored by the device, still RESULT 0), getRGB coordinates past 315 × 207
+//! (clamped), unknown mode bits (ignored), any nonzero byte for lamps,
+//! saturate and the getFeatures scope.
+//!
+//! # Limits
+//!
+//! Payload ≤ 255 bytes (frame ≤ 261), requests ≤ 64 bytes as the device
+//! receives them, ≤ 18 blocks per response. Buffers: 528 bytes for host and
+//! both-direction decoders, 144 for device decoders (twice the longest frame
+//! and a header: room for the engine's resync verification). Line coordinates
+//! are on the 79 × 52 grid, block coordinates in 316 × 208 pixels. Sizes of
+//! the decoders on a 64-bit target (the buffer, then 104 bytes of counters
+//! and indices, fewer on a 32-bit target): `size_of::<HostDecoder>()` and
+//! `size_of::<BothDecoder>()` are 632 bytes, `size_of::<DeviceDecoder>()` 248.
+//!
+//! # JSON (`serde`)
+//!
+//! With the `serde` feature every message, [`Envelope`] and [`Error`]
+//! serializes as the JSON lines of `robowire decode pixy2` (less `offset` and
+//! `len`, which the stream adds) and deserializes from the lines
+//! `robowire encode pixy2` reads, with the same checks and messages:
+//!
+//! ```
+//! # #[cfg(feature = "serde")] {
+//! use robowire::pixy2::{Envelope, Form, GetBlocks, MessageBuf, Request};
+//!
+//! let get = Envelope::new(Form::NoChecksum, Request::from(GetBlocks { sigmap: 255, max_blocks: 3 }));
+//! let line = r#"{"type":"get_blocks","checksum":false,"sigmap":255,"max_blocks":3}"#;
+//! assert_eq!(serde_json::to_string(&get).unwrap(), line);
+//! let back = Envelope::new(Form::NoChecksum, MessageBuf::Request(get.body));
+//! assert_eq!(serde_json::from_str(line).ok(), Some(back));
+//! # }
+//! ```
 //!
 //! # Example: a host asks for blocks
 //!
@@ -61,16 +123,22 @@
 //! the frames it builds in host memory (`ae c1` responses) decode.
 
 mod blocks;
+mod envelope;
 mod error;
 mod features;
 pub mod framing;
-mod packet;
 mod pair;
 mod request;
 mod response;
+#[cfg(feature = "serde")]
+mod serde_impls;
+mod wire;
 
 pub use blocks::{Block, BlockIter, Blocks, BlocksBuf, MAX_BLOCKS};
-pub use error::{DeviceError, Error, Malformed};
+#[allow(deprecated)]
+pub use envelope::Packet;
+pub use envelope::{Envelope, Message, MessageBuf};
+pub use error::{DeviceError, Error, Malformed, NameError};
 pub use features::{
     Barcode, Element, Elements, FeatureIter, Features, FeaturesBuf, Intersection, IntersectionLine,
     Section, Sections, Vector, FTYPE_BARCODE, FTYPE_INTERSECTION, FTYPE_VECTOR, INTERSECTION_SLOTS,
@@ -80,10 +148,6 @@ pub use framing::{Both, Device, Framing, Host, Side};
 /// The old name of [`Both`].
 #[deprecated(since = "0.2.0", note = "renamed to `Both` (`robowire::side::Both`)")]
 pub type Any = Both;
-pub use packet::{
-    checksum, packet_type, Form, Message, MessageBuf, Packet, DEVICE_MAX_PAYLOAD, MAX_FRAME,
-    MAX_PAYLOAD, SYNC_CHECKSUM, SYNC_NO_CHECKSUM,
-};
 pub use pair::{PairError, ProgSwitch, Query};
 pub use request::{
     ChangeProg, GetBlocks, GetFeatures, GetFps, GetResolution, GetRgb, GetVersion, ProgName,
@@ -91,22 +155,36 @@ pub use request::{
     SetNextTurn, SetServos, SetVector,
 };
 pub use response::{FirmwareType, Resolution, Response, ResponseBuf, Rgb, Version};
+pub use wire::{
+    checksum, packet_type, Form, DEVICE_MAX_PAYLOAD, MAX_FRAME_LEN, MAX_PAYLOAD, SYNC_CHECKSUM,
+    SYNC_NO_CHECKSUM,
+};
+
+/// The old name of [`MAX_FRAME_LEN`].
+#[deprecated(since = "0.2.0", note = "renamed to `MAX_FRAME_LEN`")]
+pub const MAX_FRAME: usize = MAX_FRAME_LEN;
 
 use crate::stream::StreamDecoder;
 
-/// Buffer size of host and any-direction decoders: twice the longest frame
-/// (261) and a header, so the engine's resync verification has room.
+/// Buffer size of host decoders: twice the longest frame (261) and a header,
+/// so the engine's resync verification has room.
 pub const HOST_BUFFER: usize = 528;
 /// Buffer size of device decoders: twice the longest accepted request (6 + 64)
 /// and a header.
 pub const DEVICE_BUFFER: usize = 144;
+/// Buffer size of both-direction decoders, as [`HOST_BUFFER`].
+pub const BOTH_BUFFER: usize = HOST_BUFFER;
 
 /// Decodes responses (the host's side).
 pub type HostDecoder = StreamDecoder<Framing<Host>, HOST_BUFFER>;
 /// Decodes requests (the device's side, or a simulated Pixy2).
 pub type DeviceDecoder = StreamDecoder<Framing<Device>, DEVICE_BUFFER>;
 /// Decodes both directions (captures, tooling).
-pub type Decoder = StreamDecoder<Framing<Both>, HOST_BUFFER>;
+pub type BothDecoder = StreamDecoder<Framing<Both>, BOTH_BUFFER>;
+
+/// The old name of [`BothDecoder`].
+#[deprecated(since = "0.2.0", note = "renamed to `BothDecoder`")]
+pub type Decoder = BothDecoder;
 
 /// A host decoder accepting both frame forms.
 pub const fn host_decoder() -> HostDecoder {
@@ -118,7 +196,13 @@ pub const fn device_decoder() -> DeviceDecoder {
     StreamDecoder::new(Framing::new())
 }
 
-/// An any-direction decoder accepting both frame forms.
-pub const fn decoder() -> Decoder {
+/// A both-direction decoder accepting both frame forms.
+pub const fn both_decoder() -> BothDecoder {
     StreamDecoder::new(Framing::new())
+}
+
+/// The old name of [`both_decoder`].
+#[deprecated(since = "0.2.0", note = "renamed to `both_decoder`")]
+pub const fn decoder() -> BothDecoder {
+    both_decoder()
 }

@@ -17,13 +17,13 @@
 use super::blocks::Blocks;
 use super::error::DeviceError;
 use super::features::{Features, Section};
-use super::packet::packet_type as ty;
 use super::request::{
     ChangeProg, GetBlocks, GetFeatures, GetFps, GetResolution, GetRgb, GetVersion, Request,
     ReverseVector, SetCameraBrightness, SetDefaultTurn, SetLamp, SetLed, SetMode, SetNextTurn,
     SetServos, SetVector,
 };
 use super::response::{Resolution, Response, Rgb, Version};
+use super::wire::packet_type as ty;
 
 /// Why a response does not answer a request.
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]

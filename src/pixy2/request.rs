@@ -9,11 +9,12 @@
 //! mode bits it does not know (ignored), any nonzero byte for on/true.
 
 use core::fmt;
+use core::str::FromStr;
 
 use crate::encode::EncodeError;
 
 use super::error::{Error, Malformed};
-use super::packet::{packet_type as ty, Body, Form, DEVICE_MAX_PAYLOAD};
+use super::wire::{packet_type as ty, Body, Form, DEVICE_MAX_PAYLOAD};
 
 /// A program name as sent by changeProg: the raw payload, at most 64 bytes.
 ///
@@ -24,7 +25,9 @@ use super::packet::{packet_type as ty, Body, Form, DEVICE_MAX_PAYLOAD};
 ///
 /// With the `serde` feature it serializes as its payload bytes, padding
 /// included (a byte string; an array of numbers in JSON); deserializing
-/// refuses more than 64 bytes.
+/// refuses more than 64 bytes. [`FromStr`] is [`ProgName::new`];
+/// [`Display`](fmt::Display) writes the name (bytes up to the first NUL,
+/// non-ASCII bytes escaped).
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ProgName {
     bytes: [u8; DEVICE_MAX_PAYLOAD],
@@ -107,6 +110,21 @@ impl ProgName {
     /// The name as text, if it is UTF-8.
     pub fn as_str(&self) -> Option<&str> {
         core::str::from_utf8(self.name()).ok()
+    }
+}
+
+impl FromStr for ProgName {
+    type Err = EncodeError;
+
+    /// As [`ProgName::new`]: `"line"` is the padded name `line`.
+    fn from_str(name: &str) -> Result<Self, EncodeError> {
+        Self::new(name)
+    }
+}
+
+impl fmt::Display for ProgName {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.name().escape_ascii())
     }
 }
 
@@ -344,7 +362,30 @@ impl GetRgb {
 }
 
 /// Any host → device request.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+///
+/// One whole frame parses with `Request::try_from(frame)` (either form, the
+/// sync word included, held to the device's 64-byte limit); a request
+/// encodes in the no-checksum form, as the official host sends it (wrap it in
+/// an [`Envelope`](super::Envelope) to choose).
+///
+/// Its [`Display`](fmt::Display) form is one line of the JSON words:
+/// `get_blocks sigmap=255 max_blocks=255`. With the `serde` feature it is the
+/// JSON object `robowire` prints and reads, a `type` from
+/// [`Request::NAMES`] and the request's fields:
+/// `{"type":"get_blocks","sigmap":255,"max_blocks":255}`. Deserializing checks
+/// what the encoder checks, with messages that name the field, and ignores
+/// `offset`, `len` and `checksum` (an [`Envelope`](super::Envelope) reads
+/// `checksum`).
+///
+/// ```
+/// use robowire::pixy2::{GetBlocks, Request};
+///
+/// let frame = [0xae, 0xc1, 0x20, 0x02, 0xff, 0x03];
+/// let request = Request::try_from(&frame[..])?;
+/// assert_eq!(request, Request::from(GetBlocks { sigmap: 0xff, max_blocks: 3 }));
+/// assert_eq!(request.to_string(), "get_blocks sigmap=255 max_blocks=3");
+/// # Ok::<(), robowire::pixy2::Error>(())
+/// ```
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Request {
@@ -467,6 +508,48 @@ fn u8_at(p: &[u8], i: usize) -> u8 {
 }
 
 impl Request {
+    /// Every request's `type` name, in packet type order.
+    pub const NAMES: [&'static str; 16] = [
+        "change_prog",
+        "get_resolution",
+        "get_version",
+        "set_camera_brightness",
+        "set_servos",
+        "set_led",
+        "set_lamp",
+        "get_fps",
+        "get_blocks",
+        "get_features",
+        "set_mode",
+        "set_vector",
+        "set_next_turn",
+        "set_default_turn",
+        "reverse_vector",
+        "get_rgb",
+    ];
+
+    /// The `type` name (one of [`Request::NAMES`]).
+    pub const fn name(&self) -> &'static str {
+        Self::NAMES[match self {
+            Self::ChangeProg(_) => 0,
+            Self::GetResolution(_) => 1,
+            Self::GetVersion(_) => 2,
+            Self::SetCameraBrightness(_) => 3,
+            Self::SetServos(_) => 4,
+            Self::SetLed(_) => 5,
+            Self::SetLamp(_) => 6,
+            Self::GetFps(_) => 7,
+            Self::GetBlocks(_) => 8,
+            Self::GetFeatures(_) => 9,
+            Self::SetMode(_) => 10,
+            Self::SetVector(_) => 11,
+            Self::SetNextTurn(_) => 12,
+            Self::SetDefaultTurn(_) => 13,
+            Self::ReverseVector(_) => 14,
+            Self::GetRgb(_) => 15,
+        }]
+    }
+
     /// The packet type byte.
     pub const fn packet_type(&self) -> u8 {
         match self {
@@ -518,10 +601,19 @@ impl Request {
     }
 
     /// Parse a request from its type and payload, as the device reads it.
+    #[deprecated(
+        since = "0.2.0",
+        note = "parse one whole frame with `Request::try_from(frame)`"
+    )]
+    pub fn parse(packet_type: u8, payload: &[u8]) -> Result<Self, Error> {
+        Self::from_payload(packet_type, payload)
+    }
+
+    /// Parse a request from its type and payload, as the device reads it.
     ///
     /// Errors: an unknown type, a length the type cannot have, a payload over
     /// the device's 64-byte limit, getBlocks with signature map 0.
-    pub fn parse(packet_type: u8, payload: &[u8]) -> Result<Self, Error> {
+    pub(crate) fn from_payload(packet_type: u8, payload: &[u8]) -> Result<Self, Error> {
         let len = u8::try_from(payload.len()).map_err(|_| Error::TooLong {
             packet_type,
             len: u8::MAX,
@@ -584,6 +676,48 @@ impl Request {
             }),
             _ => return Err(Error::UnknownType { packet_type }),
         })
+    }
+}
+
+/// The `type` name and every field the JSON form carries, as `key=value`:
+/// `set_servos pan=500 tilt=20`, `change_prog name=line`.
+impl fmt::Display for Request {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())?;
+        match *self {
+            Self::ChangeProg(ChangeProg(ref name)) => {
+                let payload = name.as_payload();
+                let end = payload.iter().rposition(|&b| b != 0).map_or(0, |i| i + 1);
+                write!(f, " name={}", payload[..end].escape_ascii())?;
+                if payload.len() != ProgName::PADDED_LEN {
+                    write!(f, " payload_len={}", payload.len())?;
+                }
+                Ok(())
+            }
+            Self::GetResolution(GetResolution { reserved }) if reserved != 0 => {
+                write!(f, " reserved={reserved}")
+            }
+            Self::GetResolution(_) | Self::GetVersion(_) | Self::GetFps(_) => Ok(()),
+            Self::ReverseVector(_) => Ok(()),
+            Self::SetCameraBrightness(SetCameraBrightness(b)) => write!(f, " brightness={b}"),
+            Self::SetServos(SetServos { pan, tilt }) => write!(f, " pan={pan} tilt={tilt}"),
+            Self::SetLed(SetLed { r, g, b }) => write!(f, " r={r} g={g} b={b}"),
+            Self::SetLamp(SetLamp { upper, lower }) => write!(f, " upper={upper} lower={lower}"),
+            Self::GetBlocks(GetBlocks { sigmap, max_blocks }) => {
+                write!(f, " sigmap={sigmap} max_blocks={max_blocks}")
+            }
+            Self::GetFeatures(GetFeatures { scope, features }) => {
+                write!(f, " scope={scope} features={features}")
+            }
+            Self::SetMode(SetMode(mode)) => write!(f, " mode={mode}"),
+            Self::SetVector(SetVector(index)) => write!(f, " index={index}"),
+            Self::SetNextTurn(SetNextTurn(angle)) | Self::SetDefaultTurn(SetDefaultTurn(angle)) => {
+                write!(f, " angle={angle}")
+            }
+            Self::GetRgb(GetRgb { x, y, saturate }) => {
+                write!(f, " x={x} y={y} saturate={saturate}")
+            }
+        }
     }
 }
 

@@ -8,8 +8,8 @@ use crate::encode::EncodeError;
 
 use super::blocks::{Blocks, BlocksBuf};
 use super::error::{DeviceError, Error, Malformed};
-use super::features::{Features, FeaturesBuf};
-use super::packet::{packet_type as ty, Body, Form};
+use super::features::{Features, FeaturesBuf, Section};
+use super::wire::{packet_type as ty, Body, Form};
 
 /// The firmware type field of a version response: 10 bytes, NUL-padded, not
 /// NUL-terminated when all 10 are used. All 10 bytes are kept as received.
@@ -144,10 +144,29 @@ impl Rgb {
 /// Any device → host response, borrowing blocks and line features from the
 /// frame.
 ///
-/// With the `serde` feature it serializes exactly as [`ResponseBuf`] does, and
-/// only [`ResponseBuf`] deserializes ([`Blocks`] has nothing to borrow from a
-/// serialized form).
-#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+/// One whole frame parses with `Response::try_from(frame)` (either form, the
+/// sync word included; a checksum is verified); a response encodes in the
+/// checksum form, as the device sends it (wrap it in an
+/// [`Envelope`](super::Envelope) to choose).
+///
+/// Its [`Display`](fmt::Display) form is one line of the JSON words:
+/// `error code=busy`, `resolution width=316 height=208`. With the `serde`
+/// feature it is the JSON object `robowire` prints and reads, a `type` from
+/// [`Response::NAMES`] and the response's fields:
+/// `{"type":"error","code":"busy"}`, `{"type":"blocks","blocks":[…]}`,
+/// `{"type":"features","sections":[{"vectors":[…]},…]}`. It serializes exactly
+/// as [`ResponseBuf`] does, and only [`ResponseBuf`] deserializes ([`Blocks`]
+/// has nothing to borrow from a serialized form).
+///
+/// ```
+/// use robowire::pixy2::{DeviceError, Response};
+///
+/// let frame = [0xaf, 0xc1, 0x03, 0x01, 0xfe, 0x00, 0xfe];
+/// let response = Response::try_from(&frame[..])?;
+/// assert_eq!(response, Response::Error(DeviceError::Busy));
+/// assert_eq!(response.to_string(), "error code=busy");
+/// # Ok::<(), robowire::pixy2::Error>(())
+/// ```
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Response<'a> {
@@ -166,8 +185,8 @@ pub enum Response<'a> {
     Features(Features<'a>),
 }
 
-/// The owned form of [`Response`], with fixed-capacity blocks and features.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+/// The owned form of [`Response`], with fixed-capacity blocks and features;
+/// displays and serializes as [`Response`] does.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ResponseBuf {
@@ -213,6 +232,28 @@ pub(crate) const fn is_response_type(packet_type: u8) -> bool {
 }
 
 impl<'a> Response<'a> {
+    /// Every response's `type` name, in packet type order.
+    pub const NAMES: [&'static str; 6] = [
+        "result",
+        "error",
+        "resolution",
+        "version",
+        "blocks",
+        "features",
+    ];
+
+    /// The `type` name (one of [`Response::NAMES`]).
+    pub const fn name(&self) -> &'static str {
+        Self::NAMES[match self {
+            Self::Result(_) => 0,
+            Self::Error(_) => 1,
+            Self::Resolution(_) => 2,
+            Self::Version(_) => 3,
+            Self::Blocks(_) => 4,
+            Self::Features(_) => 5,
+        }]
+    }
+
     /// A getRGB answer: RESULT `0x00RRGGBB`.
     pub const fn rgb(color: Rgb) -> Self {
         Self::Result(color.to_result())
@@ -243,7 +284,17 @@ impl<'a> Response<'a> {
 
     /// Parse a response from its type and payload (blocks and features are
     /// borrowed from `payload`).
+    #[deprecated(
+        since = "0.2.0",
+        note = "parse one whole frame with `Response::try_from(frame)`"
+    )]
     pub fn parse(packet_type: u8, payload: &'a [u8]) -> Result<Self, Error> {
+        Self::from_payload(packet_type, payload)
+    }
+
+    /// Parse a response from its type and payload (blocks and features are
+    /// borrowed from `payload`).
+    pub(crate) fn from_payload(packet_type: u8, payload: &'a [u8]) -> Result<Self, Error> {
         let len = u8::try_from(payload.len()).map_err(|_| Error::BadLength {
             packet_type,
             len: u8::MAX,
@@ -303,6 +354,71 @@ impl ResponseBuf {
             Self::Blocks(b) => Response::Blocks(b.view()),
             Self::Features(f) => Response::Features(f.view()),
         }
+    }
+}
+
+/// The `type` name and the fields as `key=value`; blocks one `{…}` each,
+/// line features the element count of each section:
+/// `version hardware=8704 firmware_major=3 firmware_minor=0 firmware_build=10
+/// firmware_type=general`, `blocks {signature=1 x=100 y=50 width=20 height=10
+/// angle=0 index=3 age=255}`, `features vectors=1 intersections=1 barcodes=1`.
+impl fmt::Display for Response<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())?;
+        match *self {
+            Self::Result(value) => write!(f, " value={value}"),
+            Self::Error(e) => match e.name() {
+                Some(name) => write!(f, " code={name}"),
+                None => write!(f, " code={}", e.code()),
+            },
+            Self::Resolution(Resolution { width, height }) => {
+                write!(f, " width={width} height={height}")
+            }
+            Self::Version(v) => {
+                let name = &v.firmware_type.0;
+                let end = name.iter().rposition(|&b| b != 0).map_or(0, |i| i + 1);
+                write!(
+                    f,
+                    " hardware={} firmware_major={} firmware_minor={} firmware_build={} \
+                     firmware_type={}",
+                    v.hardware,
+                    v.firmware_major,
+                    v.firmware_minor,
+                    v.firmware_build,
+                    name[..end].escape_ascii()
+                )
+            }
+            Self::Blocks(blocks) => {
+                for b in blocks {
+                    write!(
+                        f,
+                        " {{signature={} x={} y={} width={} height={} angle={} index={} age={}}}",
+                        b.signature, b.x, b.y, b.width, b.height, b.angle, b.index, b.age
+                    )?;
+                }
+                Ok(())
+            }
+            Self::Features(features) => {
+                for section in features.sections() {
+                    match section {
+                        Section::Vectors(v) => write!(f, " vectors={}", v.len())?,
+                        Section::Intersections(i) => write!(f, " intersections={}", i.len())?,
+                        Section::Barcodes(b) => write!(f, " barcodes={}", b.len())?,
+                        Section::Unknown { ftype, data } => {
+                            write!(f, " ftype={ftype} data_len={}", data.len())?
+                        }
+                    }
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// As [`Response`]'s.
+impl fmt::Display for ResponseBuf {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(&self.as_response(), f)
     }
 }
 

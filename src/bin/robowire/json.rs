@@ -72,29 +72,6 @@ impl JsonLine {
         self.buf.push(b'}');
         self.first = false;
     }
-
-    /// A member whose value is an array of objects, one per item, each
-    /// written by `members` (which may nest further arrays and objects).
-    pub fn objects<T>(
-        &mut self,
-        key: &str,
-        items: impl IntoIterator<Item = T>,
-        mut members: impl FnMut(&mut JsonLine, T),
-    ) {
-        self.key(key);
-        self.buf.push(b'[');
-        for (i, item) in items.into_iter().enumerate() {
-            if i > 0 {
-                self.buf.push(b',');
-            }
-            self.buf.push(b'{');
-            self.first = true;
-            members(self, item);
-            self.buf.push(b'}');
-        }
-        self.buf.push(b']');
-        self.first = false;
-    }
 }
 
 /// A value that can be written as one JSON scalar.
