@@ -24,6 +24,15 @@
 //! | decoder | [`DeviceDecoder`] ([`device_decoder()`]) | [`HostDecoder`] ([`host_decoder()`]) | [`BothDecoder`] ([`both_decoder()`]) |
 //! | buffer | [`DEVICE_BUFFER`] | [`HOST_BUFFER`] ([`LENIENT_BUFFER`] when lenient) | [`BOTH_BUFFER`] |
 //!
+//! Buffers: 256 bytes for a host decoder (the longest report frame), 32 for
+//! a device decoder (the longest command frame is 31), 512 for a lenient or
+//! both-direction decoder (an unknown report and the frame that must follow
+//! it). Sizes on a 64-bit target (the buffer, then the engine's counters and
+//! indices, fewer on a 32-bit target): `size_of::<HostDecoder>()` is 360
+//! bytes, `size_of::<DeviceDecoder>()` 136, `size_of::<BothDecoder>()` and
+//! `size_of::<LenientHostDecoder>()` 616. The owned forms hold a whole frame:
+//! `CommandBuf` 32 bytes, `ReportBuf` 258, `MessageBuf` 261.
+//!
 //! Messages borrow their variable byte fields (I2C/SPI data, feature
 //! extras, module data, servo positions) from the frame or the caller;
 //! short fixed lists (PWM pins, servo moves, AS5600 angles) are owned

@@ -5,6 +5,7 @@
 use core::fmt;
 use core::str::FromStr;
 
+use super::buf::Message;
 use super::command::{Command, EncoderKind, ModifyReporting, PinMode, Pull};
 use super::dialect::Dialect;
 use super::module::ModuleType;
@@ -272,5 +273,34 @@ impl Report<'_> {
             Report::Debug { .. } => 21,
             Report::Unknown { .. } => 22,
         }]
+    }
+}
+
+/// `a` then `b`, in a const context.
+const fn concat<const N: usize>(a: &[&'static str], b: &[&'static str]) -> [&'static str; N] {
+    let mut out = [""; N];
+    let mut i = 0;
+    while i < N {
+        out[i] = if i < a.len() { a[i] } else { b[i - a.len()] };
+        i += 1;
+    }
+    out
+}
+
+/// Every message `type`: the commands', then the reports'.
+const MESSAGE_NAMES: [&str; Command::NAMES.len() + Report::NAMES.len()] =
+    concat(Command::NAMES, Report::NAMES);
+
+impl Message<'_> {
+    /// Every message `type`: [`Command::NAMES`], then [`Report::NAMES`]. No
+    /// name is in both: a `type` says the direction.
+    pub const NAMES: &'static [&'static str] = &MESSAGE_NAMES;
+
+    /// This message's `type`.
+    pub const fn name(&self) -> &'static str {
+        match self {
+            Message::Command(c) => c.name(),
+            Message::Report(r) => r.name(),
+        }
     }
 }
