@@ -158,7 +158,7 @@
 //! serialize in the JSON-lines schema of the `robowire` tool (a `type` tag,
 //! snake_case, the tool's field names), and the owned forms deserialize from
 //! it, checked exactly as the encoder checks (deserializing *is* encoding:
-//! an owned form holds a valid frame). [`MessageBuf::deserialize_in`] reads
+//! an owned form holds a valid frame). `MessageBuf::deserialize_in` reads
 //! another dialect. Decoders and encoders never allocate; reading JSON does.
 
 mod buf;
