@@ -3,7 +3,7 @@
 //! byte of the same buffer.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
-use robowire::telemetrix::{Report, ReportDecoder, ReportFraming, Sonar};
+use robowire::telemetrix::{Framing, Host, HostDecoder, Report, Sonar};
 use robowire::Encode;
 
 /// Tiny xorshift generator: seeded, reproducible, no dependency.
@@ -29,10 +29,10 @@ fn reports() -> Vec<u8> {
     let mut out = Vec::with_capacity(1 << 20);
     let mut frame = [0u8; 16];
     while out.len() < 1 << 20 {
-        let report: Report<&[u8]> = match rng.below(20) {
+        let report: Report<'_> = match rng.below(20) {
             0..=7 => Report::Digital {
                 pin: rng.below(30) as u8,
-                high: rng.below(2) == 1,
+                value: rng.below(2) == 1,
             },
             8..=13 => Report::Analog {
                 pin: 26 + rng.below(5) as u8,
@@ -55,7 +55,7 @@ fn reports() -> Vec<u8> {
 }
 
 fn decode_all(input: &[u8], chunk: usize) -> u64 {
-    let mut decoder = ReportDecoder::new(ReportFraming::new());
+    let mut decoder = HostDecoder::new(Framing::<Host>::new());
     let mut frames = 0u64;
     for piece in input.chunks(chunk) {
         let mut rest = piece;

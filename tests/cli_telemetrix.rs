@@ -9,7 +9,7 @@ mod cli_common;
 
 use cli_common::{data, data_arg, hex, run, Run};
 
-use robowire::telemetrix::{ReportDecoder, ReportFraming};
+use robowire::telemetrix::host_decoder;
 
 fn summary(frames: u64, bytes: u64, skipped: u64, other: u64) -> String {
     format!(
@@ -556,7 +556,7 @@ fn chunk_size_does_not_change_the_output() {
 #[test]
 fn from_pico_matches_the_library_decoder() {
     let bytes = std::fs::read(data("telemetrix_reports.bin")).unwrap();
-    let mut decoder = ReportDecoder::new(ReportFraming::new());
+    let mut decoder = host_decoder();
     let mut events: Vec<_> = decoder.feed(&bytes).collect();
     events.extend(decoder.flush());
     let frames: Vec<(u64, usize)> = events

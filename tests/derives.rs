@@ -137,18 +137,20 @@ fn defmt_formats_reports_and_counters() {
         format::<robowire::telemetrix::Rgb>(),
         format::<robowire::telemetrix::EncoderKind>(),
         format::<robowire::telemetrix::Pulls>(),
-        format::<robowire::telemetrix::CommandRef<'static>>(),
-        format::<robowire::telemetrix::OwnedCommand>(),
+        format::<robowire::telemetrix::Command<'static>>(),
+        format::<robowire::telemetrix::CommandBuf>(),
         format::<robowire::telemetrix::Dialect>(),
         format::<robowire::telemetrix::Error>(),
-        format::<robowire::telemetrix::ReportFraming>(),
-        format::<robowire::telemetrix::CommandFraming>(),
+        format::<robowire::telemetrix::UnknownName>(),
+        format::<robowire::telemetrix::Framing<robowire::telemetrix::Host>>(),
+        format::<robowire::telemetrix::Framing<robowire::telemetrix::Device>>(),
+        format::<robowire::telemetrix::Framing<robowire::telemetrix::Both>>(),
         format::<robowire::telemetrix::Payload<4>>(),
         format::<robowire::telemetrix::List<u16, 8>>(),
         format::<robowire::telemetrix::ModuleType>(),
         format::<robowire::telemetrix::Pca9685Config>(),
-        format::<robowire::telemetrix::ModuleInit<&'static [u8]>>(),
-        format::<robowire::telemetrix::ModuleNew<&'static [u8]>>(),
+        format::<robowire::telemetrix::ModuleInit<'static>>(),
+        format::<robowire::telemetrix::ModuleNew<'static>>(),
         format::<robowire::telemetrix::ServoMove>(),
         format::<robowire::telemetrix::HiwonderCommand>(),
         format::<robowire::telemetrix::Pca9685Channel>(),
@@ -156,17 +158,19 @@ fn defmt_formats_reports_and_counters() {
         format::<robowire::telemetrix::Ssd1306Command>(),
         format::<robowire::telemetrix::RelayCommand>(),
         format::<robowire::telemetrix::ServoPosition>(),
-        format::<robowire::telemetrix::ServoPositions<&'static [u8]>>(),
+        format::<robowire::telemetrix::ServoPositions<'static>>(),
         format::<robowire::telemetrix::Ssd1306Done>(),
-        format::<robowire::telemetrix::ModuleReport<&'static [u8]>>(),
+        format::<robowire::telemetrix::ModuleReport<'static>>(),
         format::<robowire::telemetrix::SonarReading>(),
         format::<robowire::telemetrix::Sonar>(),
-        format::<robowire::telemetrix::ReportRef<'static>>(),
-        format::<robowire::telemetrix::OwnedReport>(),
+        format::<robowire::telemetrix::Report<'static>>(),
+        format::<robowire::telemetrix::ReportBuf>(),
+        format::<robowire::telemetrix::Message<'static>>(),
+        format::<robowire::telemetrix::MessageBuf>(),
         format::<robowire::telemetrix::SensorType>(),
         format::<robowire::telemetrix::SensorNew>(),
         format::<robowire::telemetrix::SensorReading>(),
-        format::<robowire::telemetrix::InDialect<'static, robowire::telemetrix::OwnedReport>>(),
+        format::<robowire::telemetrix::InDialect<'static, robowire::telemetrix::Report<'static>>>(),
     ];
     assert!(names.iter().all(|n| n.starts_with("robowire::")));
 }
@@ -584,130 +588,36 @@ fn serde_pixy2_owned_features_response() {
 
 #[cfg(feature = "serde")]
 #[test]
-fn serde_telemetrix_reports_with_payloads() {
+fn serde_telemetrix_is_the_json_lines_schema() {
     use robowire::telemetrix::{
-        ModuleReport, OwnedReport, Report, ReportDecoder, ReportFraming, ReportRef, SensorReading,
-        ServoPositions,
+        host_decoder, Command, Dialect, Error, Framing, Host, Report, ReportBuf,
     };
-    use robowire::FrameBuf;
 
-    let sent: [ReportRef<'_>; 3] = [
-        Report::I2cRead {
-            port: 0,
-            msg_id: 5,
-            reg: 0x10,
-            data: &[0xaa, 0xbb, 0xcc][..],
-        },
-        Report::Sensor {
-            sensor_num: 1,
-            reading: SensorReading::Ina226 {
-                volts: 12.5,
-                amps: 0.25,
-            },
-        },
-        Report::Module {
-            module_num: 0,
-            report: ModuleReport::HiwonderPositions(ServoPositions::from_raw(&[0, 0x2e, 0xe0][..])),
-        },
-    ];
-    let mut bytes = Vec::new();
-    for report in &sent {
-        bytes.extend_from_slice(&FrameBuf::<64>::encode(report).unwrap());
-    }
-    let mut decoder = ReportDecoder::new(ReportFraming::new());
-    let owned: Vec<OwnedReport> = decoder
-        .feed(&bytes)
+    // The full schema is pinned by tests/schema_telemetrix.rs; here: an
+    // owned report from the decoder, the framing configuration and errors.
+    let mut decoder = host_decoder();
+    let owned: Vec<ReportBuf> = decoder
+        .feed(&[0x03, 0x20, 0x07, 0x2A])
         .map(|event| event.unwrap().message)
         .collect();
-    assert_eq!(owned.len(), 3);
-
-    let expected = [
-        r#"{"I2cRead":{"port":0,"msg_id":5,"reg":16,"data":[170,187,204]}}"#,
-        r#"{"Sensor":{"sensor_num":1,"reading":{"Ina226":{"volts":12.5,"amps":0.25}}}}"#,
-        r#"{"Module":{"module_num":0,"report":{"HiwonderPositions":[0,46,224]}}}"#,
-    ];
-    for ((report, borrowed), json) in owned.iter().zip(&sent).zip(expected) {
-        json_round_trip(report, json);
-        // A borrowed report serializes as its owned form does.
-        assert_eq!(serde_json::to_string(borrowed).unwrap(), json);
-    }
-    // A borrowed report cannot borrow its bytes from JSON's array of numbers.
-    assert!(serde_json::from_str::<ReportRef<'_>>(expected[0]).is_err());
-
-    // More bytes than an owned report's payload holds (254) are refused.
-    let too_long = format!(
-        r#"{{"Spi":{{"port":0,"data":[{}]}}}}"#,
-        ["1"; 255].join(",")
-    );
-    let err = serde_json::from_str::<OwnedReport>(&too_long).unwrap_err();
-    assert!(err.to_string().contains("at most 254 items"), "{err}");
-}
-
-#[cfg(feature = "serde")]
-#[test]
-fn serde_telemetrix_commands_and_config() {
-    use robowire::telemetrix::{
-        Command, CommandRef, Dialect, Error, HiwonderCommand, List, OwnedCommand, Payload, PinMode,
-        Pull, ReportFraming, ServoMove,
-    };
-
-    json_round_trip(
-        &OwnedCommand::SetPinMode {
-            pin: 4,
-            mode: PinMode::DigitalInput {
-                pull: Pull::Up,
-                report: true,
-            },
-        },
-        r#"{"SetPinMode":{"pin":4,"mode":{"DigitalInput":{"pull":"Up","report":true}}}}"#,
-    );
-    let write: OwnedCommand = Command::I2cWrite {
-        port: 1,
-        addr: 0x3c,
-        msg_id: 9,
-        no_stop: 0,
-        data: Payload::from_slice(&[0x00, 0xaf]).unwrap(),
-    };
-    let json = r#"{"I2cWrite":{"port":1,"addr":60,"msg_id":9,"no_stop":0,"data":[0,175]}}"#;
-    json_round_trip(&write, json);
-    let borrowed: CommandRef<'_> = write.as_ref();
-    assert_eq!(serde_json::to_string(&borrowed).unwrap(), json);
-    assert!(serde_json::from_str::<CommandRef<'_>>(json).is_err());
-
-    let angle = HiwonderCommand::SetAngle(
-        List::from_slice(&[ServoMove {
-            idx: 0,
-            centideg: 12000,
-            time_ms: 500,
-        }])
+    json_round_trip(&owned[0], r#"{"type":"pong","counter":7,"boot_id":42}"#);
+    assert_eq!(
+        serde_json::to_string(&Report::Pong {
+            counter: 7,
+            boot_id: 42
+        })
         .unwrap(),
+        r#"{"type":"pong","counter":7,"boot_id":42}"#
+    );
+    assert_eq!(
+        serde_json::to_string(&Command::Ping { counter: 7 }).unwrap(),
+        r#"{"type":"ping","counter":7}"#
     );
     json_round_trip(
-        &angle,
-        r#"{"SetAngle":[{"idx":0,"centideg":12000,"time_ms":500}]}"#,
-    );
-    let data = OwnedCommand::module_data(0, &angle).unwrap();
-    let json = serde_json::to_string(&data).unwrap();
-    assert_eq!(serde_json::from_str::<OwnedCommand>(&json).unwrap(), data);
-
-    // Lists refuse more items than they hold.
-    let six = format!(
-        "[{}]",
-        [r#"{"idx":0,"centideg":0,"time_ms":0}"#; 6].join(",")
-    );
-    let err = serde_json::from_str::<List<ServoMove, 5>>(&six).unwrap_err();
-    assert!(err.to_string().contains("at most 5 items"), "{err}");
-    let data_29 = format!(
-        r#"{{"ModuleData":{{"module_num":0,"data":[{}]}}}}"#,
-        ["7"; 29].join(",")
-    );
-    assert!(serde_json::from_str::<OwnedCommand>(&data_29).is_err());
-
-    json_round_trip(
-        &ReportFraming::new()
+        &Framing::<Host>::new()
             .with_dialect(Dialect::Upstream11)
             .lenient(),
-        r#"{"dialect":"Upstream11","lenient":true}"#,
+        r#"{"dialect":"upstream11","lenient":true}"#,
     );
     // Serialize only: the field name is a `&'static str`.
     assert_eq!(
@@ -716,17 +626,6 @@ fn serde_telemetrix_commands_and_config() {
             field: "pin"
         })
         .unwrap(),
-        r#"{"OutOfRange":{"id":1,"field":"pin"}}"#
+        r#"{"error":"out_of_range","id":1,"field":"pin"}"#
     );
-}
-
-/// Borrowed views deserialize from formats that hand out borrowed bytes.
-#[cfg(feature = "serde")]
-#[test]
-fn serde_borrowed_views_borrow_bytes() {
-    use serde::Deserialize;
-
-    fn borrows<'a, T: Deserialize<'a>>() {}
-    borrows::<robowire::telemetrix::CommandRef<'_>>();
-    borrows::<robowire::telemetrix::ReportRef<'_>>();
 }

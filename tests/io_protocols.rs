@@ -29,7 +29,7 @@ mod tokio_codec {
     use futures_util::{SinkExt, StreamExt};
     use robowire::io::tokio::{Pixy2HostCodec, TelemetrixHostCodec, TelemetrixPicoCodec};
     use robowire::pixy2::{DeviceError, Form, GetFps, Request, ResponseBuf};
-    use robowire::telemetrix::{Command, OwnedReport, Report};
+    use robowire::telemetrix::{Command, Report, ReportBuf};
     use tokio::io::AsyncWriteExt;
     use tokio_util::codec::{FramedRead, FramedWrite};
 
@@ -64,27 +64,27 @@ mod tokio_codec {
     async fn telemetrix_both_sides() {
         let (mut tx, rx) = tokio::io::duplex(3);
         tokio::spawn(async move { tx.write_all(&telemetrix_reports()).await.unwrap() });
-        let reports: Vec<OwnedReport> = FramedRead::new(rx, TelemetrixHostCodec::default())
+        let reports: Vec<ReportBuf> = FramedRead::new(rx, TelemetrixHostCodec::default())
             .map(|item| item.unwrap().message)
             .collect()
             .await;
         assert_eq!(reports.len(), 4, "{reports:?}");
         assert_eq!(
-            reports[0].as_ref(),
+            reports[0].message(),
             Report::Digital {
                 pin: 10,
-                high: true
+                value: true
             }
         );
         assert_eq!(
-            reports[1].as_ref(),
+            reports[1].message(),
             Report::Analog {
                 pin: 26,
                 value: 2048
             }
         );
         assert_eq!(
-            reports[3].as_ref(),
+            reports[3].message(),
             Report::Pong {
                 counter: 7,
                 boot_id: 42
@@ -95,7 +95,7 @@ mod tokio_codec {
         let mut out = Vec::new();
         let mut write = FramedWrite::new(&mut out, TelemetrixPicoCodec::default());
         write
-            .send(&Report::<&[u8]>::Pong {
+            .send(&Report::Pong {
                 counter: 7,
                 boot_id: 42,
             })
@@ -111,8 +111,8 @@ mod tokio_codec {
         .collect()
         .await;
         assert_eq!(commands.len(), 2);
-        assert_eq!(commands[0].as_ref(), Command::Ping { counter: 7 });
-        assert_eq!(commands[1].as_ref(), Command::GetFirmwareVersion);
+        assert_eq!(commands[0].message(), Command::Ping { counter: 7 });
+        assert_eq!(commands[1].message(), Command::GetFirmwareVersion);
     }
 }
 
@@ -121,9 +121,7 @@ mod embedded {
     use super::*;
     use robowire::io::embedded_io::{PacketReader, PacketWriter};
     use robowire::pixy2::{self, DeviceError, Envelope, Form, Request, ResponseBuf};
-    use robowire::telemetrix::{
-        CommandDecoder, CommandFraming, Report, ReportDecoder, ReportFraming,
-    };
+    use robowire::telemetrix::{Device, DeviceDecoder, Framing, Host, HostDecoder, Report};
 
     #[test]
     fn pixy2_host_reader_and_device_writer() {
@@ -164,7 +162,7 @@ mod embedded {
         let bytes = telemetrix_reports();
         let mut reader = PacketReader::new(
             &bytes[..],
-            ReportDecoder::new(ReportFraming::new()),
+            HostDecoder::new(Framing::<Host>::new()),
             [0u8; 4],
         );
         let mut n = 0;
@@ -176,16 +174,16 @@ mod embedded {
         let mut uart = [0u8; 8];
         let mut writer: PacketWriter<&mut [u8], 64> = PacketWriter::new(&mut uart[..]);
         let len = writer
-            .send(&Report::<&[u8]>::Digital {
+            .send(&Report::Digital {
                 pin: 10,
-                high: true,
+                value: true,
             })
             .unwrap();
         assert_eq!(&uart[..len], &hex("03 02 0a 01")[..]);
         let commands = hex("01 05 02 20 07");
         let mut reader = PacketReader::new(
             &commands[..],
-            CommandDecoder::new(CommandFraming::new()),
+            DeviceDecoder::new(Framing::<Device>::new()),
             [0u8; 1],
         );
         assert!(reader.read_message().unwrap().is_some());

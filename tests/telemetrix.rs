@@ -3,11 +3,10 @@
 //! corruption.
 
 use robowire::telemetrix::{
-    Command, CommandDecoder, CommandFraming, CommandRef, Dialect, EncoderKind, Error,
-    HiwonderCommand, List, ModuleInit, ModuleNew, ModuleReport, ModuleType, OwnedCommand,
-    OwnedReport, Pca9685Channel, Pca9685Command, PinMode, Pull, Pulls, PwmPin, PwmPins, Report,
-    ReportDecoder, ReportFraming, ReportRef, SensorNew, SensorType, ServoMove, ServoPositions,
-    Sonar, SonarReading,
+    Command, CommandBuf, Device, DeviceDecoder, Dialect, EncoderKind, Error, Framing,
+    HiwonderCommand, Host, HostDecoder, List, ModuleInit, ModuleNew, ModuleReport, ModuleType,
+    Pca9685Channel, Pca9685Command, PinMode, Pull, Pulls, PwmPin, PwmPins, Report, ReportBuf,
+    SensorNew, SensorType, ServoMove, ServoPositions, Sonar, SonarReading,
 };
 use robowire::{Encode, EncodeError, FrameBuf, Rejected, StreamDecoder};
 
@@ -43,52 +42,52 @@ where
     out
 }
 
-fn decode_reports(dialect: Dialect, bytes: &[u8]) -> Vec<Ev<OwnedReport>> {
+fn decode_reports(dialect: Dialect, bytes: &[u8]) -> Vec<Ev<ReportBuf>> {
     collect(
-        &mut ReportDecoder::new(ReportFraming::new().with_dialect(dialect)),
+        &mut HostDecoder::new(Framing::<Host>::new().with_dialect(dialect)),
         &[bytes],
     )
 }
 
-fn decode_commands(dialect: Dialect, bytes: &[u8]) -> Vec<Ev<OwnedCommand>> {
+fn decode_commands(dialect: Dialect, bytes: &[u8]) -> Vec<Ev<CommandBuf>> {
     collect(
-        &mut CommandDecoder::new(CommandFraming::new().with_dialect(dialect)),
+        &mut DeviceDecoder::new(Framing::<Device>::new().with_dialect(dialect)),
         &[bytes],
     )
 }
 
-fn encode_command(dialect: Dialect, c: &CommandRef<'_>) -> Vec<u8> {
+fn encode_command(dialect: Dialect, c: &Command<'_>) -> Vec<u8> {
     let frame = FrameBuf::<31>::encode(&c.in_dialect(dialect)).unwrap();
     assert_eq!(frame.len(), c.encoded_len_in(dialect));
     frame.to_vec()
 }
 
-fn encode_report(dialect: Dialect, r: &ReportRef<'_>) -> Vec<u8> {
+fn encode_report(dialect: Dialect, r: &Report<'_>) -> Vec<u8> {
     let frame = FrameBuf::<256>::encode(&r.in_dialect(dialect)).unwrap();
     assert_eq!(frame.len(), r.encoded_len_in(dialect));
     frame.to_vec()
 }
 
 /// Golden command: encodes to `bytes`, and `bytes` decode to exactly it.
-fn golden_command(dialect: Dialect, bytes: &str, c: CommandRef<'_>) {
+fn golden_command(dialect: Dialect, bytes: &str, c: Command<'_>) {
     let bytes = hex(bytes);
     assert_eq!(encode_command(dialect, &c), bytes, "encode {c:?}");
     let events = decode_commands(dialect, &bytes);
     assert_eq!(events.len(), 1, "{events:?}");
     let (offset, len, ref got) = events[0].unwrap();
     assert_eq!((offset, len), (0, bytes.len()));
-    assert_eq!(got.as_ref(), c);
+    assert_eq!(got.message(), c);
 }
 
 /// Golden report: encodes to `bytes`, and `bytes` decode to exactly it.
-fn golden_report(dialect: Dialect, bytes: &str, r: ReportRef<'_>) {
+fn golden_report(dialect: Dialect, bytes: &str, r: Report<'_>) {
     let bytes = hex(bytes);
     assert_eq!(encode_report(dialect, &r), bytes, "encode {r:?}");
     let events = decode_reports(dialect, &bytes);
     assert_eq!(events.len(), 1, "{events:?}");
     let (offset, len, ref got) = events[0].unwrap();
     assert_eq!((offset, len), (0, bytes.len()));
-    assert_eq!(got.as_ref(), r);
+    assert_eq!(got.message(), r);
 }
 
 fn pwm(pins: &[(u8, u16)]) -> PwmPins {
@@ -120,7 +119,7 @@ fn golden_commands_mirte13() {
         "03 02 19 01",
         Command::DigitalWrite {
             pin: 25,
-            high: true,
+            value: true,
         },
     );
     golden_command(
@@ -159,10 +158,10 @@ fn golden_commands_mirte13() {
             kind: EncoderKind::Quadrature,
             pin_a: 14,
             pin_b: 15,
-            pulls: Pulls {
+            pulls: Some(Pulls {
                 up: true,
                 down: false,
-            },
+            }),
         },
     );
     golden_command(
@@ -257,16 +256,13 @@ fn golden_module_data_is_typed() {
         }])
         .unwrap(),
     );
-    let cmd = Command::<&[u8]>::module_data(0, &angle).unwrap();
-    assert_eq!(
-        FrameBuf::<31>::encode(&cmd).unwrap().to_vec(),
-        hex("09 22 00 01 01 00 2E E0 01 F4")
-    );
-    let Command::ModuleData { data, .. } = cmd else {
+    let cmd = Command::module_data(0, &angle).unwrap();
+    assert_eq!(cmd.to_vec(), hex("09 22 00 01 01 00 2E E0 01 F4"));
+    let Command::ModuleData { data, .. } = cmd.message() else {
         panic!("{cmd:?}")
     };
     assert_eq!(
-        <HiwonderCommand as robowire::telemetrix::ModuleCommand>::parse(&data),
+        <HiwonderCommand as robowire::telemetrix::ModuleCommand>::parse(data),
         Ok(angle)
     );
 
@@ -278,16 +274,13 @@ fn golden_module_data_is_typed() {
         }])
         .unwrap(),
     };
-    let cmd = Command::<&[u8]>::module_data(1, &pca).unwrap();
-    assert_eq!(
-        FrameBuf::<31>::encode(&cmd).unwrap().to_vec(),
-        hex("07 22 01 03 00 00 01 2C")
-    );
-    let Command::ModuleData { data, .. } = cmd else {
+    let cmd = Command::module_data(1, &pca).unwrap();
+    assert_eq!(cmd.to_vec(), hex("07 22 01 03 00 00 01 2C"));
+    let Command::ModuleData { data, .. } = cmd.message() else {
         panic!("{cmd:?}")
     };
     assert_eq!(
-        <Pca9685Command as robowire::telemetrix::ModuleCommand>::parse(&data),
+        <Pca9685Command as robowire::telemetrix::ModuleCommand>::parse(data),
         Ok(pca)
     );
 }
@@ -295,8 +288,11 @@ fn golden_module_data_is_typed() {
 #[test]
 fn golden_port_probe_zeros_are_skipped() {
     let events = decode_commands(M13, &hex("00 00 00 00 00 00 00 01 05"));
-    assert_eq!(events, vec![Ok((7, 2, Command::GetFirmwareVersion))]);
-    let mut dec = CommandDecoder::new(CommandFraming::new());
+    assert_eq!(
+        events,
+        vec![Ok((7, 2, Command::GetFirmwareVersion.to_buf().unwrap()))]
+    );
+    let mut dec = DeviceDecoder::new(Framing::<Device>::new());
     let _ = collect(&mut dec, &[&hex("00 00 00 00 00 00 00 01 05")]);
     let stats = dec.stats();
     assert_eq!((stats.skipped, stats.frames, stats.rejected), (7, 1, 0));
@@ -375,7 +371,7 @@ fn golden_reports_mirte13() {
         "03 02 0A 01",
         Report::Digital {
             pin: 10,
-            high: true,
+            value: true,
         },
     );
     golden_report(
@@ -430,7 +426,7 @@ fn golden_report_meanings() {
     let events = decode_reports(M13, &hex("05 0B 09 0A FF FD 05 0B 09 0A 00 64"));
     let readings: Vec<_> = events
         .iter()
-        .map(|e| match e.as_ref().unwrap().2 {
+        .map(|e| match e.as_ref().unwrap().2.message() {
             Report::Sonar(s) => s.reading(),
             ref other => panic!("{other:?}"),
         })
@@ -448,14 +444,14 @@ fn golden_report_meanings() {
     let Report::Module {
         report: ModuleReport::HiwonderPositions(p),
         ..
-    } = &events[0].as_ref().unwrap().2
+    } = events[0].as_ref().unwrap().2.message()
     else {
         panic!("{events:?}")
     };
     let positions: Vec<_> = p.iter().map(|p| (p.idx, p.centideg)).collect();
     assert_eq!(positions, [(0, 12000)]);
     assert_eq!(
-        events[0].as_ref().unwrap().2.as_ref(),
+        events[0].as_ref().unwrap().2.message(),
         Report::Module {
             module_num: 0,
             report: ModuleReport::HiwonderPositions(ServoPositions::from_raw(&[0, 0x2E, 0xE0][..]))
@@ -539,7 +535,7 @@ fn dialect_layouts_differ_where_spec_10_says() {
             kind: EncoderKind::Single,
             pin_a: 5,
             pin_b: 0,
-            pulls: Pulls::default(),
+            pulls: None,
         },
     );
     // mirte 1.3 builds of 2024-09..2025-11: sonar without the echo pin.
@@ -584,7 +580,7 @@ fn dialect_layouts_differ_where_spec_10_says() {
 
 #[test]
 fn encoder_refuses_what_firmware_mishandles() {
-    let enc = |d: Dialect, c: CommandRef<'_>| c.encode_in(d, &mut [0u8; 64]);
+    let enc = |d: Dialect, c: Command<'_>| c.encode_in(d, &mut [0u8; 64]);
     let range = |field| Err(EncodeError::OutOfRange { field });
     let not_here = Err(EncodeError::Inconsistent {
         what: "the command does not exist in this dialect",
@@ -608,7 +604,7 @@ fn encoder_refuses_what_firmware_mishandles() {
             M13,
             Command::DigitalWrite {
                 pin: 30,
-                high: true
+                value: true
             }
         ),
         range("pin")
@@ -730,7 +726,7 @@ fn encoder_refuses_what_firmware_mishandles() {
     // Output buffer too small: nothing written.
     let mut out = [0xEEu8; 2];
     assert_eq!(
-        Command::<&[u8]>::Ping { counter: 1 }.encode(&mut out),
+        Command::Ping { counter: 1 }.encode(&mut out),
         Err(EncodeError::BufferTooSmall {
             needed: 3,
             available: 2
@@ -747,7 +743,7 @@ fn encoder_refuses_what_firmware_mishandles() {
 
 #[test]
 fn report_encoder_refuses_what_decoder_rejects() {
-    let enc = |d: Dialect, r: ReportRef<'_>| r.encode_in(d, &mut [0u8; 300]);
+    let enc = |d: Dialect, r: Report<'_>| r.encode_in(d, &mut [0u8; 300]);
     assert!(enc(M13, Report::Encoder { pin: 1, steps: 0 }).is_err());
     assert!(enc(
         M13,
@@ -801,21 +797,14 @@ fn report_encoder_refuses_what_decoder_rejects() {
         }
     )
     .is_err());
-    let positions = ServoPositions::<robowire::telemetrix::Payload<254>>::from_positions(&[
-        robowire::telemetrix::ServoPosition {
-            idx: 0,
-            centideg: 12000,
-        },
-    ])
-    .unwrap();
-    let owned: OwnedReport = Report::Module {
+    let positions = ServoPositions::from_raw(&[0, 0x2E, 0xE0]);
+    let owned: ReportBuf = Report::Module {
         module_num: 0,
         report: ModuleReport::HiwonderPositions(positions),
-    };
-    assert_eq!(
-        FrameBuf::<256>::encode(&owned).unwrap().to_vec(),
-        hex("07 22 00 01 00 00 2E E0")
-    );
+    }
+    .to_buf()
+    .unwrap();
+    assert_eq!(owned.to_vec(), hex("07 22 00 01 00 00 2E E0"));
 }
 
 /// Every golden report frame of spec §12 (mirte 1.3), with the spec's `BB`
@@ -915,10 +904,10 @@ fn garbage_that_forms_a_valid_frame_is_not_detectable() {
     assert_eq!(frames.len(), 1);
     assert_eq!((frames[0].0, frames[0].1), (0, 4));
     assert_eq!(
-        frames[0].2.as_ref(),
+        frames[0].2.message(),
         Report::Digital {
             pin: 2,
-            high: false
+            value: false
         }
     );
 }
@@ -929,7 +918,7 @@ fn chunking_invariance_reports() {
     let whole = decode_reports(M13, &input);
     assert!(whole.iter().filter(|e| e.is_ok()).count() >= REPORT_FRAMES.len());
     for i in 0..=input.len() {
-        let mut dec = ReportDecoder::new(ReportFraming::new());
+        let mut dec = HostDecoder::new(Framing::<Host>::new());
         let (a, b) = input.split_at(i);
         assert_eq!(collect(&mut dec, &[a, b]), whole, "split at {i}");
     }
@@ -938,7 +927,7 @@ fn chunking_invariance_reports() {
     let whole = decode_reports(M13, short);
     for i in 0..=short.len() {
         for j in i..=short.len() {
-            let mut dec = ReportDecoder::new(ReportFraming::new());
+            let mut dec = HostDecoder::new(Framing::<Host>::new());
             let parts = [&short[..i], &short[i..j], &short[j..]];
             assert_eq!(collect(&mut dec, &parts), whole, "split at {i}, {j}");
         }
@@ -951,7 +940,7 @@ fn chunking_invariance_commands() {
     let whole = decode_commands(M13, &input);
     for i in 0..=input.len() {
         for j in (i..=input.len()).step_by(7) {
-            let mut dec = CommandDecoder::new(CommandFraming::new());
+            let mut dec = DeviceDecoder::new(Framing::<Device>::new());
             let parts = [&input[..i], &input[i..j], &input[j..]];
             assert_eq!(collect(&mut dec, &parts), whole, "split at {i}, {j}");
         }
@@ -963,7 +952,7 @@ fn every_proper_prefix_is_incomplete() {
     for f in REPORT_FRAMES {
         let frame = hex(f);
         for n in 1..frame.len() {
-            let mut dec = ReportDecoder::new(ReportFraming::new());
+            let mut dec = HostDecoder::new(Framing::<Host>::new());
             let mut input = &frame[..n];
             assert!(dec.decode(&mut input).is_none(), "{f} prefix {n}");
             assert_eq!(dec.buffered(), n);
@@ -981,7 +970,7 @@ fn every_proper_prefix_is_incomplete() {
     for f in COMMAND_FRAMES {
         let frame = hex(f);
         for n in 1..frame.len() {
-            let mut dec = CommandDecoder::new(CommandFraming::new());
+            let mut dec = DeviceDecoder::new(Framing::<Device>::new());
             let mut input = &frame[..n];
             assert!(dec.decode(&mut input).is_none(), "{f} prefix {n}");
             let first = dec.finish().map(|e| e.map(|f| f.offset));
@@ -1000,10 +989,10 @@ fn every_proper_prefix_is_incomplete() {
 fn push_byte_at_a_time_equals_whole() {
     let input = garbage_stream(REPORT_FRAMES);
     let whole = decode_reports(M13, &input);
-    let mut dec = ReportDecoder::new(ReportFraming::new());
+    let mut dec = HostDecoder::new(Framing::<Host>::new());
     let mut got = Vec::new();
-    let map = |e: robowire::Event<'_, ReportRef<'_>, Error>| match e {
-        Ok(f) => Ok((f.offset, f.raw.len(), f.message.to_owned())),
+    let map = |e: robowire::Event<'_, Report<'_>, Error>| match e {
+        Ok(f) => Ok((f.offset, f.raw.len(), f.message.to_buf().unwrap())),
         Err(r) => Err((r.offset, r.error)),
     };
     for &b in &input {
@@ -1029,7 +1018,7 @@ fn lenient_mode_skips_unknown_ids_only_before_a_known_frame() {
     let input = hex("02 07 01  03 02 0A 01  04 50 01 02 03  00 00  02 00 41  03 51 01 02");
     let strict = decode_reports(M13, &input);
     assert_eq!(strict.iter().filter(|e| e.is_ok()).count(), 2);
-    let mut dec = robowire::telemetrix::LenientReportDecoder::new(ReportFraming::new().lenient());
+    let mut dec = robowire::telemetrix::LenientHostDecoder::new(Framing::<Host>::new().lenient());
     let events = collect(&mut dec, &[&input]);
     let oks: Vec<_> = events
         .iter()
@@ -1039,14 +1028,14 @@ fn lenient_mode_skips_unknown_ids_only_before_a_known_frame() {
     // The trailing unknown frame has no known frame after it: truncated.
     assert_eq!(oks, [(0, 3, 7), (3, 4, 2), (7, 5, 0x50), (14, 3, 0)]);
     assert!(matches!(
-        events[1].as_ref().unwrap().2.as_ref(),
+        events[1].as_ref().unwrap().2.message(),
         Report::Digital {
             pin: 10,
-            high: true
+            value: true
         }
     ));
     assert_eq!(
-        events[0].as_ref().unwrap().2.as_ref(),
+        events[0].as_ref().unwrap().2.message(),
         Report::Unknown {
             id: 7,
             payload: &[1][..]
@@ -1078,7 +1067,7 @@ impl Rng {
 /// A realistic core-0 report (digital, analog, sonar, encoder, PONG, I2C,
 /// sensor) or a core-1 one (Hiwonder positions, DEBUG_PRINT).
 fn random_report(rng: &mut Rng, core1: bool) -> Vec<u8> {
-    let r: ReportRef<'_> = if core1 {
+    let r: Report<'_> = if core1 {
         match rng.below(3) {
             0 => Report::Debug {
                 id: 30,
@@ -1103,7 +1092,7 @@ fn random_report(rng: &mut Rng, core1: bool) -> Vec<u8> {
         match rng.below(8) {
             0 | 1 => Report::Digital {
                 pin: rng.below(30) as u8,
-                high: rng.below(2) == 1,
+                value: rng.below(2) == 1,
             },
             2 | 3 => Report::Analog {
                 pin: 26 + rng.below(5) as u8,
@@ -1196,7 +1185,7 @@ struct Recovery {
 
 fn measure(t: &Tagged) -> Recovery {
     let intact = t.intact();
-    let mut dec = ReportDecoder::new(ReportFraming::new());
+    let mut dec = HostDecoder::new(Framing::<Host>::new());
     let found: Vec<(u64, usize)> = collect(&mut dec, &[&t.bytes])
         .into_iter()
         .filter_map(Result::ok)

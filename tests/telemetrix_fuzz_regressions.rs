@@ -1,6 +1,6 @@
 //! Inputs the fuzz targets found, kept as regression tests.
 
-use robowire::telemetrix::{Dialect, ReportDecoder, ReportFraming};
+use robowire::telemetrix::{Dialect, Framing, HostDecoder};
 use robowire::{OwnedEvent, StreamDecoder};
 
 fn events<F: robowire::FrameRules, const N: usize>(
@@ -24,11 +24,11 @@ fn events<F: robowire::FrameRules, const N: usize>(
 fn feature_check_length_is_refused_however_the_bytes_arrive() {
     let input = [0x00, 0x29, 0x79, 0xff, 0x25, 0x01, 0x01, 0x00];
     for dialect in [Dialect::Mirte13, Dialect::Mirte12, Dialect::Upstream11] {
-        let framing = ReportFraming::new().with_dialect(dialect);
-        let whole = events(ReportDecoder::new(framing), &input, input.len());
+        let framing = Framing::new().with_dialect(dialect);
+        let whole = events(HostDecoder::new(framing), &input, input.len());
         for chunk in 1..input.len() {
             assert_eq!(
-                events(ReportDecoder::new(framing), &input, chunk),
+                events(HostDecoder::new(framing), &input, chunk),
                 whole,
                 "{dialect:?}, chunk {chunk}"
             );

@@ -5,12 +5,11 @@
 use proptest::prelude::*;
 use proptest::strategy::Union;
 use robowire::telemetrix::{
-    parse_command, parse_report, Command, CommandDecoder, CommandFraming, Dialect, EncoderKind,
-    HiwonderCommand, LenientReportDecoder, List, ModifyReporting, ModuleCommand, ModuleInit,
-    ModuleNew, ModuleReport, OwnedCommand, OwnedReport, Payload, Pca9685Channel, Pca9685Command,
-    Pca9685Config, PinMode, Pull, Pulls, PwmPin, RelayCommand, Report, ReportDecoder,
-    ReportFraming, Rgb, SensorNew, SensorReading, SensorType, ServoMove, ServoPositions, Sonar,
-    Ssd1306Command, Ssd1306Done, SONAR_NO_ECHO, SONAR_STALE,
+    Command, Device, DeviceDecoder, Dialect, EncoderKind, Framing, HiwonderCommand, Host,
+    HostDecoder, LenientHostDecoder, List, ModifyReporting, ModuleCommand, ModuleInit, ModuleNew,
+    ModuleReport, Pca9685Channel, Pca9685Command, Pca9685Config, PinMode, Pull, Pulls, PwmPin,
+    RelayCommand, Report, Rgb, SensorNew, SensorReading, SensorType, ServoMove, ServoPositions,
+    Sonar, Ssd1306Command, Ssd1306Done, SONAR_NO_ECHO, SONAR_STALE,
 };
 use robowire::{FrameRules, StreamDecoder};
 
@@ -20,10 +19,16 @@ fn dialect() -> impl Strategy<Value = Dialect> {
     prop::sample::select(&DIALECTS[..])
 }
 
-fn payload<const N: usize>(len: std::ops::RangeInclusive<usize>) -> BoxedStrategy<Payload<N>> {
+/// Bytes for a message's byte field. Messages borrow their bytes; the
+/// strategies hand out `'static` ones (a test run leaks a few kilobytes).
+fn payload(len: std::ops::RangeInclusive<usize>) -> BoxedStrategy<&'static [u8]> {
     prop::collection::vec(any::<u8>(), len)
-        .prop_map(|v| Payload::from_slice(&v).unwrap())
+        .prop_map(leak)
         .boxed()
+}
+
+fn leak(bytes: Vec<u8>) -> &'static [u8] {
+    bytes.leak()
 }
 
 fn pin() -> BoxedStrategy<u8> {
@@ -53,7 +58,7 @@ fn f32s<const N: usize>() -> impl Strategy<Value = [f32; N]> {
     prop::array::uniform(-1.0e6f32..1.0e6f32)
 }
 
-type C = OwnedCommand;
+type C = Command<'static>;
 
 /// Every command of `d`, with valid field values.
 fn command(d: Dialect) -> BoxedStrategy<C> {
@@ -86,7 +91,7 @@ fn command(d: Dialect) -> BoxedStrategy<C> {
             })
             .boxed(),
         (pin(), any::<bool>())
-            .prop_map(|(pin, high)| C::DigitalWrite { pin, high })
+            .prop_map(|(pin, value)| C::DigitalWrite { pin, value })
             .boxed(),
         prop::collection::vec((pin(), any::<u16>()), 1..=if m13 { 9 } else { 1 })
             .prop_map(|v| {
@@ -158,7 +163,7 @@ fn command(d: Dialect) -> BoxedStrategy<C> {
                 pin_b,
                 clk,
                 freq_hz,
-                cs_pins: Payload::from_slice(&cs).unwrap(),
+                cs_pins: leak(cs),
             })
             .boxed(),
         (port(), payload(0..=27))
@@ -222,11 +227,7 @@ fn command(d: Dialect) -> BoxedStrategy<C> {
                     } else {
                         pin_b
                     },
-                    pulls: if m13 {
-                        Pulls { up, down }
-                    } else {
-                        Pulls::default()
-                    },
+                    pulls: if m13 { Some(Pulls { up, down }) } else { None },
                 })
                 .boxed(),
             any::<u8>()
@@ -306,7 +307,7 @@ fn command(d: Dialect) -> BoxedStrategy<C> {
     Union::new(arms).boxed()
 }
 
-fn module_init() -> BoxedStrategy<ModuleInit<Payload<28>>> {
+fn module_init() -> BoxedStrategy<ModuleInit<'static>> {
     prop_oneof![
         (port(), any::<Option<(u8, u16)>>()).prop_map(|(port, c)| ModuleInit::Pca9685 {
             port,
@@ -336,7 +337,7 @@ fn module_init() -> BoxedStrategy<ModuleInit<Payload<28>>> {
     .boxed()
 }
 
-type R = OwnedReport;
+type R = Report<'static>;
 
 fn sensor_reading() -> BoxedStrategy<SensorReading> {
     prop_oneof![
@@ -373,16 +374,14 @@ fn sensor_reading() -> BoxedStrategy<SensorReading> {
     .boxed()
 }
 
-fn module_report() -> BoxedStrategy<ModuleReport<Payload<254>>> {
+fn module_report() -> BoxedStrategy<ModuleReport<'static>> {
     prop_oneof![
         prop::collection::vec((any::<u8>(), any::<u16>()), 1..=83).prop_map(|v| {
             let raw: Vec<u8> = v
                 .into_iter()
                 .flat_map(|(i, c)| [i, (c >> 8) as u8, c as u8])
                 .collect();
-            ModuleReport::HiwonderPositions(ServoPositions::from_raw(
-                Payload::from_slice(&raw).unwrap(),
-            ))
+            ModuleReport::HiwonderPositions(ServoPositions::from_raw(leak(raw)))
         }),
         (any::<u8>(), any::<bool>())
             .prop_map(|(bus_id, ok)| ModuleReport::HiwonderIdVerify { bus_id, ok }),
@@ -418,7 +417,7 @@ fn feature() -> BoxedStrategy<R> {
     let f = |msg_type: u8, supported: bool, extras: &[u8]| R::Feature {
         msg_type,
         supported,
-        extras: Payload::from_slice(extras).unwrap(),
+        extras: leak(extras.to_vec()),
     };
     prop_oneof![
         prop::collection::vec(any::<u8>(), 0..=8).prop_map(move |pins| {
@@ -452,7 +451,7 @@ fn report(d: Dialect) -> BoxedStrategy<R> {
     let mut arms: Vec<BoxedStrategy<R>> = vec![
         any::<u8>().prop_map(|byte| R::LoopBack { byte }).boxed(),
         (pin(), any::<bool>())
-            .prop_map(|(pin, high)| R::Digital { pin, high })
+            .prop_map(|(pin, value)| R::Digital { pin, value })
             .boxed(),
         (analog, 0u16..=4095)
             .prop_map(|(pin, value)| R::Analog { pin, value })
@@ -619,12 +618,12 @@ proptest! {
         prop_assert!(n <= 31);
         prop_assert_eq!(usize::from(out[0]) + 1, n);
         prop_assert_eq!(out[1], c.id());
-        prop_assert_eq!(parse_command(d, &out[..n]).unwrap(), c.as_ref());
-        let found = frames(CommandDecoder::new(CommandFraming::new().with_dialect(d)), &out[..n]);
+        prop_assert_eq!(Command::parse_in(&out[..n], d).unwrap(), c);
+        let found = frames(DeviceDecoder::new(Framing::<Device>::new().with_dialect(d)), &out[..n]);
         prop_assert_eq!(found.len(), 1);
         prop_assert_eq!(&found[0].1, &c);
         for k in 1..n {
-            let mut dec = CommandDecoder::new(CommandFraming::new().with_dialect(d));
+            let mut dec = DeviceDecoder::new(Framing::<Device>::new().with_dialect(d));
             let mut input = &out[..k];
             prop_assert!(dec.decode(&mut input).is_none());
         }
@@ -637,12 +636,12 @@ proptest! {
         let n = r.encode_in(d, &mut out).unwrap();
         prop_assert_eq!(n, r.encoded_len_in(d));
         prop_assert_eq!(usize::from(out[0]) + 1, n);
-        prop_assert_eq!(parse_report(d, &out[..n]).unwrap(), r.as_ref());
-        let found = frames(ReportDecoder::new(ReportFraming::new().with_dialect(d)), &out[..n]);
+        prop_assert_eq!(Report::parse_in(&out[..n], d).unwrap(), r);
+        let found = frames(HostDecoder::new(Framing::<Host>::new().with_dialect(d)), &out[..n]);
         prop_assert_eq!(found.len(), 1);
         prop_assert_eq!(&found[0].1, &r);
         for k in 1..n {
-            let mut dec = ReportDecoder::new(ReportFraming::new().with_dialect(d));
+            let mut dec = HostDecoder::new(Framing::<Host>::new().with_dialect(d));
             let mut input = &out[..k];
             prop_assert!(dec.decode(&mut input).is_none());
         }
@@ -654,13 +653,13 @@ proptest! {
     fn commands_across_dialects((d, c) in dialect_and_command(), other in dialect()) {
         let mut out = [0u8; 31];
         if let Ok(n) = c.encode_in(other, &mut out) {
-            prop_assert_eq!(parse_command(other, &out[..n]).unwrap(), c.as_ref());
+            prop_assert_eq!(Command::parse_in(&out[..n], other).unwrap(), c);
             if other != d {
                 // Same bytes in both dialects only if both define it the same way.
                 let mut mine = [0u8; 31];
                 let m = c.encode_in(d, &mut mine).unwrap();
                 if mine[..m] == out[..n] {
-                    prop_assert_eq!(parse_command(d, &mine[..m]).unwrap(), c.as_ref());
+                    prop_assert_eq!(Command::parse_in(&mine[..m], d).unwrap(), c);
                 }
             }
         }
@@ -670,19 +669,22 @@ proptest! {
     /// to exactly its bytes, in both directions and every dialect.
     #[test]
     fn decoded_frames_re_encode(d in dialect(), bytes in prop::collection::vec(any::<u8>(), 0..600)) {
-        for (raw, c) in frames(CommandDecoder::new(CommandFraming::new().with_dialect(d)), &bytes) {
+        for (raw, c) in frames(DeviceDecoder::new(Framing::<Device>::new().with_dialect(d)), &bytes) {
             let mut out = [0u8; 31];
-            let n = c.encode_in(d, &mut out).unwrap();
+            let n = c.message().encode_in(d, &mut out).unwrap();
+            prop_assert_eq!(c.frame(), &raw[..]);
             prop_assert_eq!(&out[..n], &raw[..]);
         }
-        for (raw, r) in frames(ReportDecoder::new(ReportFraming::new().with_dialect(d)), &bytes) {
+        for (raw, r) in frames(HostDecoder::new(Framing::<Host>::new().with_dialect(d)), &bytes) {
             let mut out = [0u8; 256];
-            let n = r.encode_in(d, &mut out).unwrap();
+            let n = r.message().encode_in(d, &mut out).unwrap();
+            prop_assert_eq!(r.frame(), &raw[..]);
             prop_assert_eq!(&out[..n], &raw[..]);
         }
-        for (raw, r) in frames(LenientReportDecoder::new(ReportFraming::new().with_dialect(d).lenient()), &bytes) {
+        for (raw, r) in frames(LenientHostDecoder::new(Framing::<Host>::new().with_dialect(d).lenient()), &bytes) {
             let mut out = [0u8; 256];
-            let n = r.encode_in(d, &mut out).unwrap();
+            let n = r.message().encode_in(d, &mut out).unwrap();
+            prop_assert_eq!(r.frame(), &raw[..]);
             prop_assert_eq!(&out[..n], &raw[..]);
         }
     }
@@ -702,7 +704,7 @@ proptest! {
             let n = r.encode_in(d, &mut out).unwrap();
             bytes.extend_from_slice(&out[..n]);
         }
-        let mut dec = ReportDecoder::new(ReportFraming::new().with_dialect(d));
+        let mut dec = HostDecoder::new(Framing::<Host>::new().with_dialect(d));
         let found: Vec<_> = dec.feed(&bytes).collect();
         let s = dec.stats();
         prop_assert_eq!(s.bytes, bytes.len() as u64);
@@ -725,7 +727,7 @@ proptest! {
             bytes.extend_from_slice(&out[..n]);
             expected.push(*r);
         }
-        let got: Vec<_> = frames(ReportDecoder::new(ReportFraming::new().with_dialect(d)), &bytes)
+        let got: Vec<_> = frames(HostDecoder::new(Framing::<Host>::new().with_dialect(d)), &bytes)
             .into_iter()
             .map(|(_, m)| m)
             .collect();
@@ -752,7 +754,7 @@ proptest! {
             bytes.extend_from_slice(&out[..n]);
             expected.push(*r);
         }
-        let got: Vec<_> = frames(ReportDecoder::new(ReportFraming::new()), &bytes)
+        let got: Vec<_> = frames(HostDecoder::new(Framing::<Host>::new()), &bytes)
             .into_iter()
             .map(|(_, m)| m)
             .collect();
@@ -805,13 +807,13 @@ proptest! {
 }
 
 fn check_module_frame(data: &[u8]) -> Result<(), TestCaseError> {
-    let cmd: Command<&[u8]> = Command::ModuleData {
+    let cmd: Command<'_> = Command::ModuleData {
         module_num: 2,
         data,
     };
     let mut out = [0u8; 31];
     let n = cmd.encode_in(Dialect::Mirte13, &mut out).unwrap();
-    prop_assert_eq!(parse_command(Dialect::Mirte13, &out[..n]).unwrap(), cmd);
+    prop_assert_eq!(Command::parse_in(&out[..n], Dialect::Mirte13).unwrap(), cmd);
     Ok(())
 }
 
@@ -898,7 +900,7 @@ fn every_dialect_has_its_own_sonar_and_i2c_forms() {
     // variants: each encodes only in its own dialect.
     let sonar = [
         (
-            Report::<&[u8]>::Sonar(Sonar::MetresCm {
+            Report::Sonar(Sonar::MetresCm {
                 trig: 1,
                 m: 1,
                 cm: 1,

@@ -6,8 +6,8 @@
 mod sim;
 
 use robowire::telemetrix::{
-    Command, CommandDecoder, CommandFraming, ModuleReport, OwnedCommand, OwnedReport, Report,
-    ReportDecoder, ReportFraming, SensorReading, Sonar, SONAR_OUT_OF_RANGE,
+    device_decoder, host_decoder, Command, CommandBuf, ModuleReport, Report, ReportBuf,
+    SensorReading, Sonar, SONAR_OUT_OF_RANGE,
 };
 use std::path::Path;
 
@@ -33,8 +33,8 @@ fn captures_regenerate_byte_for_byte() {
 }
 
 /// Every frame of a decoder's events, and the number of rejections.
-fn reports(bytes: &[u8]) -> (Vec<OwnedReport>, usize) {
-    let mut decoder = ReportDecoder::new(ReportFraming::new());
+fn reports(bytes: &[u8]) -> (Vec<ReportBuf>, usize) {
+    let mut decoder = host_decoder();
     let mut events: Vec<_> = decoder.feed(bytes).collect();
     events.extend(decoder.flush());
     let rejected = events.iter().filter(|e| e.is_err()).count();
@@ -63,15 +63,16 @@ fn host_start_up_follows_the_spec() {
     let lines = commands(&data("telemetrix_commands.hex"));
     // Spec §8: 15 zero bytes in one write, then one frame per write.
     assert_eq!(lines[0], [0; 15]);
-    let mut decoder = CommandDecoder::new(CommandFraming::new());
-    let mut sent: Vec<OwnedCommand> = Vec::new();
+    let mut decoder = device_decoder();
+    let mut bufs: Vec<CommandBuf> = Vec::new();
     for line in &lines[1..] {
         let events: Vec<_> = decoder.feed(line).collect();
         assert_eq!(events.len(), 1, "one frame per write: {line:02x?}");
         let frame = events.into_iter().next().unwrap().unwrap();
         assert_eq!(frame.len, line.len());
-        sent.push(frame.message);
+        bufs.push(frame.message);
     }
+    let sent: Vec<Command<'_>> = bufs.iter().map(CommandBuf::message).collect();
     assert_eq!(sent[0], Command::GetFirmwareVersion);
     // FEATURE_CHECK for ids 0..=38, sensor checks 0..=10, module checks 0..=3.
     for (i, c) in sent[1..40].iter().enumerate() {
@@ -80,8 +81,7 @@ fn host_start_up_follows_the_spec() {
     let checks = |want: u8| {
         sent.iter()
             .filter(|c| {
-                c.id() == want
-                    && matches!(c.as_ref(), Command::SensorNew(_) | Command::ModuleNew(_))
+                c.id() == want && matches!(c, Command::SensorNew(_) | Command::ModuleNew(_))
             })
             .count()
     };
@@ -101,12 +101,13 @@ fn host_start_up_follows_the_spec() {
 
 #[test]
 fn reports_are_a_realistic_mix() {
-    let (frames, rejected) = reports(&data("telemetrix_reports.bin"));
+    let (bufs, rejected) = reports(&data("telemetrix_reports.bin"));
+    let frames: Vec<Report<'_>> = bufs.iter().map(ReportBuf::message).collect();
     assert_eq!(frames.len(), 217);
     // A little noise: some random bytes and one frame interleaved with a
     // second core's frame.
     assert!((10..=30).contains(&rejected), "{rejected} rejections");
-    let count = |f: &dyn Fn(&OwnedReport) -> bool| frames.iter().filter(|r| f(r)).count();
+    let count = |f: &dyn Fn(&Report<'_>) -> bool| frames.iter().filter(|r| f(r)).count();
     // Replies to the start-up: the version, 39 feature checks, 11 sensor and
     // 4 module checks, and a PONG for each of the 9 PINGs.
     assert_eq!(frames[0], Report::FirmwareVersion { major: 1, minor: 3 });
@@ -119,7 +120,7 @@ fn reports_are_a_realistic_mix() {
     let digital: Vec<(u8, bool)> = frames
         .iter()
         .filter_map(|r| match r {
-            Report::Digital { pin, high } => Some((*pin, *high)),
+            Report::Digital { pin, value } => Some((*pin, *value)),
             _ => None,
         })
         .collect();

@@ -17,12 +17,12 @@
 //! (no `sin`/`cos`), so the captures regenerate byte for byte anywhere.
 
 use robowire::telemetrix::{
-    Command, CommandDecoder, CommandFraming, CommandRef, EncoderKind, HiwonderCommand, List,
+    device_decoder, Command, CommandBuf, DeviceDecoder, EncoderKind, HiwonderCommand, List,
     ModuleCommand, ModuleInit, ModuleNew, ModuleReport, ModuleType, Pca9685Channel, Pca9685Command,
     Pca9685Config, PinMode, Pull, Pulls, PwmPin, PwmPins, Report, SensorNew, SensorReading,
     SensorType, ServoMove, ServoPositions, Sonar, SONAR_OUT_OF_RANGE,
 };
-use robowire::{EncodeError, FrameBuf};
+use robowire::EncodeError;
 
 /// One generated capture: its file name under `tests/data/` and its bytes.
 pub struct Capture {
@@ -111,10 +111,14 @@ struct Write {
     bytes: Vec<u8>,
 }
 
-fn command<B: AsRef<[u8]>>(at_ms: u32, c: &Command<B>) -> Result<Write, EncodeError> {
+fn command(at_ms: u32, c: &Command<'_>) -> Result<Write, EncodeError> {
+    frame(at_ms, c.to_buf()?)
+}
+
+fn frame(at_ms: u32, c: CommandBuf) -> Result<Write, EncodeError> {
     Ok(Write {
         at_ms,
-        bytes: FrameBuf::<31>::encode(c)?.to_vec(),
+        bytes: c.to_vec(),
     })
 }
 
@@ -124,7 +128,7 @@ const SERVO_BUS_IDS: [u8; 2] = [1, 2];
 
 /// The host's writes in time order.
 fn host_script() -> Result<Vec<Write>, EncodeError> {
-    type C<'a> = CommandRef<'a>;
+    type C<'a> = Command<'a>;
     let mut w = vec![Write {
         at_ms: 0,
         bytes: vec![0; 15],
@@ -198,10 +202,10 @@ fn host_script() -> Result<Vec<Write>, EncodeError> {
             kind: EncoderKind::Quadrature,
             pin_a: 14,
             pin_b: 15,
-            pulls: Pulls {
+            pulls: Some(Pulls {
                 up: true,
                 down: false,
-            },
+            }),
         },
         C::I2cBegin {
             port: 0,
@@ -226,7 +230,7 @@ fn host_script() -> Result<Vec<Write>, EncodeError> {
     for (i, at) in (4800..END_MS).step_by(500).enumerate() {
         let led = C::DigitalWrite {
             pin: 25,
-            high: i % 2 == 0,
+            value: i % 2 == 0,
         };
         w.push(command(at, &led)?);
     }
@@ -251,7 +255,7 @@ fn host_script() -> Result<Vec<Write>, EncodeError> {
         List::from_slice(&moves).map(HiwonderCommand::SetAngle)
     };
     let both = moves(&[(0, 9000, 800), (1, 15000, 800)])?;
-    w.push(command(5200, &C::module_data(0, &both)?)?);
+    w.push(frame(5200, C::module_data(0, &both)?)?);
     let channels = [
         Pca9685Channel {
             channel: 0,
@@ -267,9 +271,9 @@ fn host_script() -> Result<Vec<Write>, EncodeError> {
     let pca = Pca9685Command {
         channels: List::from_slice(&channels)?,
     };
-    w.push(command(5600, &C::module_data(1, &pca)?)?);
+    w.push(frame(5600, C::module_data(1, &pca)?)?);
     let back = moves(&[(0, 12000, 500)])?;
-    w.push(command(7000, &C::module_data(0, &back)?)?);
+    w.push(frame(7000, C::module_data(0, &back)?)?);
     // In time order; writes at the same time keep their order.
     w.sort_by_key(|write| write.at_ms);
     Ok(w)
@@ -306,7 +310,7 @@ impl Servo {
 /// the bytes it has sent.
 struct Pico {
     rng: Rng,
-    decoder: CommandDecoder,
+    decoder: DeviceDecoder,
     out: Vec<u8>,
     now: u32,
     boot_id: Option<u8>,
@@ -326,7 +330,7 @@ impl Pico {
     fn new(seed: u64) -> Pico {
         Pico {
             rng: Rng::new(seed),
-            decoder: CommandDecoder::new(CommandFraming::new()),
+            decoder: device_decoder(),
             out: Vec::new(),
             now: 0,
             boot_id: None,
@@ -354,7 +358,7 @@ impl Pico {
                     .map(|frame| frame.message)
                     .collect();
                 for c in commands {
-                    self.execute(&c.as_ref())?;
+                    self.execute(&c.message())?;
                 }
             }
             if t % 100 == 0 {
@@ -369,8 +373,8 @@ impl Pico {
 
     /// Send a report from the first core, with now and then a few bytes of
     /// line noise before it.
-    fn send(&mut self, report: &Report<&[u8]>) -> Result<(), EncodeError> {
-        let frame = FrameBuf::<256>::encode(report)?;
+    fn send(&mut self, report: &Report<'_>) -> Result<(), EncodeError> {
+        let frame = report.to_buf()?;
         if self.rng.chance(15) {
             for _ in 0..1 + self.rng.below(4) {
                 let b = self.rng.next() as u8;
@@ -391,19 +395,18 @@ impl Pico {
     }
 
     /// Send a report from the second core (Hiwonder, debug prints).
-    fn send_core1(&mut self, report: &Report<&[u8]>) -> Result<(), EncodeError> {
+    fn send_core1(&mut self, report: &Report<'_>) -> Result<(), EncodeError> {
         if !self.interleaved && self.now >= 6000 {
             self.interleaved = true;
-            self.core1 = Some(FrameBuf::<256>::encode(report)?.to_vec());
+            self.core1 = Some(report.to_buf()?.to_vec());
             return Ok(());
         }
-        self.out
-            .extend_from_slice(&FrameBuf::<256>::encode(report)?);
+        self.out.extend_from_slice(&report.to_buf()?);
         Ok(())
     }
 
-    fn execute(&mut self, c: &CommandRef<'_>) -> Result<(), EncodeError> {
-        type R<'a> = Report<&'a [u8]>;
+    fn execute(&mut self, c: &Command<'_>) -> Result<(), EncodeError> {
+        type R<'a> = Report<'a>;
         match *c {
             Command::GetFirmwareVersion => self.send(&R::FirmwareVersion { major: 1, minor: 3 }),
             Command::FeatureCheck { msg_type } => {
@@ -538,14 +541,14 @@ impl Pico {
     }
 
     fn scan(&mut self) -> Result<(), EncodeError> {
-        type R<'a> = Report<&'a [u8]>;
+        type R<'a> = Report<'a>;
         let t = self.now;
         for i in 0..self.digital.len() {
             let (pin, last) = self.digital[i];
             let high = Self::digital_level(pin, t);
             if last != Some(high) {
                 self.digital[i].1 = Some(high);
-                self.send(&R::Digital { pin, high })?;
+                self.send(&R::Digital { pin, value: high })?;
             }
         }
         for i in 0..self.analog.len() {

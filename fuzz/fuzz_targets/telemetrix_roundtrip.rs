@@ -5,7 +5,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use robowire::telemetrix::{
-    CommandDecoder, CommandFraming, Dialect, LenientReportDecoder, ReportDecoder, ReportFraming,
+    Device, DeviceDecoder, Dialect, Framing, Host, HostDecoder, LenientHostDecoder,
 };
 
 const DIALECTS: [Dialect; 3] = [Dialect::Mirte13, Dialect::Mirte12, Dialect::Upstream11];
@@ -14,7 +14,7 @@ fuzz_target!(|data: &[u8]| {
     for dialect in DIALECTS {
         let mut out = [0u8; 256];
 
-        let mut commands = CommandDecoder::new(CommandFraming::new().with_dialect(dialect));
+        let mut commands = DeviceDecoder::new(Framing::<Device>::new().with_dialect(dialect));
         let mut input = data;
         while let Some(event) = commands.decode(&mut input) {
             if let Ok(frame) = event {
@@ -23,15 +23,13 @@ fuzz_target!(|data: &[u8]| {
                     .encode_in(dialect, &mut out)
                     .expect("re-encode command");
                 assert_eq!(&out[..n], frame.raw);
-                let owned = frame.message.to_owned();
-                let m = owned
-                    .encode_in(dialect, &mut out)
-                    .expect("re-encode owned command");
-                assert_eq!(&out[..m], frame.raw);
+                let owned = frame.message.to_buf_in(dialect).expect("own command");
+                assert_eq!(owned.frame(), frame.raw);
+                assert_eq!(owned.message(), frame.message);
             }
         }
 
-        let mut reports = ReportDecoder::new(ReportFraming::new().with_dialect(dialect));
+        let mut reports = HostDecoder::new(Framing::<Host>::new().with_dialect(dialect));
         let mut input = data;
         while let Some(event) = reports.decode(&mut input) {
             if let Ok(frame) = event {
@@ -40,16 +38,14 @@ fuzz_target!(|data: &[u8]| {
                     .encode_in(dialect, &mut out)
                     .expect("re-encode report");
                 assert_eq!(&out[..n], frame.raw);
-                let owned = frame.message.to_owned();
-                let m = owned
-                    .encode_in(dialect, &mut out)
-                    .expect("re-encode owned report");
-                assert_eq!(&out[..m], frame.raw);
+                let owned = frame.message.to_buf_in(dialect).expect("own report");
+                assert_eq!(owned.frame(), frame.raw);
+                assert_eq!(owned.message(), frame.message);
             }
         }
 
-        let lenient = ReportFraming::new().with_dialect(dialect).lenient();
-        let mut reports = LenientReportDecoder::new(lenient);
+        let lenient = Framing::<Host>::new().with_dialect(dialect).lenient();
+        let mut reports = LenientHostDecoder::new(lenient);
         let mut input = data;
         while let Some(event) = reports.decode(&mut input) {
             if let Ok(frame) = event {

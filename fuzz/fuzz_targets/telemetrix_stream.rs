@@ -5,7 +5,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use robowire::telemetrix::{
-    CommandDecoder, CommandFraming, Dialect, LenientReportDecoder, ReportDecoder, ReportFraming,
+    Device, DeviceDecoder, Dialect, Framing, Host, HostDecoder, LenientHostDecoder,
 };
 use robowire::{FrameRules, OwnedEvent, StreamDecoder};
 
@@ -85,13 +85,9 @@ fuzz_target!(|data: &[u8]| {
     };
     let dialect = DIALECTS[usize::from(select) % 3];
     let (sizes, input) = rest.split_at(rest.len().min(8));
-    let reports = ReportFraming::new().with_dialect(dialect);
-    check(|| ReportDecoder::new(reports), input, sizes);
-    check(
-        || LenientReportDecoder::new(reports.lenient()),
-        input,
-        sizes,
-    );
-    let commands = CommandFraming::new().with_dialect(dialect);
-    check(|| CommandDecoder::new(commands), input, sizes);
+    let reports = Framing::<Host>::new().with_dialect(dialect);
+    check(|| HostDecoder::new(reports), input, sizes);
+    check(|| LenientHostDecoder::new(reports.lenient()), input, sizes);
+    let commands = Framing::<Device>::new().with_dialect(dialect);
+    check(|| DeviceDecoder::new(commands), input, sizes);
 });

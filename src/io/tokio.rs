@@ -101,14 +101,20 @@ pub type Pixy2DeviceCodec<Y = Messages> =
     FrameCodec<crate::pixy2::Framing<crate::pixy2::Device>, { crate::pixy2::DEVICE_BUFFER }, Y>;
 
 /// The Telemetrix host-side codec: yields reports
-/// ([`OwnedReport`](crate::telemetrix::OwnedReport)) and encodes commands.
-pub type TelemetrixHostCodec<Y = Messages> =
-    FrameCodec<crate::telemetrix::ReportFraming, { crate::telemetrix::REPORT_BUFFER }, Y>;
+/// ([`ReportBuf`](crate::telemetrix::ReportBuf)) and encodes commands.
+pub type TelemetrixHostCodec<Y = Messages> = FrameCodec<
+    crate::telemetrix::Framing<crate::side::Host>,
+    { crate::telemetrix::HOST_BUFFER },
+    Y,
+>;
 
 /// The Telemetrix Pico-side codec (a simulated board): yields commands and
 /// encodes reports.
-pub type TelemetrixPicoCodec<Y = Messages> =
-    FrameCodec<crate::telemetrix::CommandFraming, { crate::telemetrix::COMMAND_BUFFER }, Y>;
+pub type TelemetrixPicoCodec<Y = Messages> = FrameCodec<
+    crate::telemetrix::Framing<crate::side::Device>,
+    { crate::telemetrix::DEVICE_BUFFER },
+    Y,
+>;
 
 /// A [`Decoder`] and [`Encoder`] for framing `F` with a decoder buffer of `N`
 /// bytes; `Y` chooses what the decoder yields ([`Messages`] or [`Events`]).

@@ -2,95 +2,15 @@
 
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
-use super::list::{List, Payload};
-use super::module::ModuleNew;
+use super::list::List;
+use super::module::{ModuleNew, MODULE_INIT_MAX};
 use super::sensor::SensorNew;
-use super::wire::{Reader, Writer};
-use super::{analog_pin_ok, MAX_COMMAND_LEN};
+use super::wire::{
+    analog_pin_ok, command_id, split_frame, Reader, Writer, COMMAND_PAYLOAD_MAX, MAX_COMMAND_FRAME,
+    MAX_COMMAND_LEN, PIN_COUNT,
+};
 use crate::encode::check_room;
 use crate::{Encode, EncodeError};
-
-/// Command ids (host → Pico), mirte firmware 1.3 numbering (spec §4).
-pub mod command_id {
-    /// SERIAL_LOOP_BACK.
-    pub const SERIAL_LOOP_BACK: u8 = 0;
-    /// SET_PIN_MODE.
-    pub const SET_PIN_MODE: u8 = 1;
-    /// DIGITAL_WRITE.
-    pub const DIGITAL_WRITE: u8 = 2;
-    /// PWM_WRITE.
-    pub const PWM_WRITE: u8 = 3;
-    /// MODIFY_REPORTING.
-    pub const MODIFY_REPORTING: u8 = 4;
-    /// GET_FIRMWARE_VERSION.
-    pub const GET_FIRMWARE_VERSION: u8 = 5;
-    /// GET_PICO_UNIQUE_ID.
-    pub const GET_PICO_UNIQUE_ID: u8 = 6;
-    /// SERVO_ATTACH.
-    pub const SERVO_ATTACH: u8 = 7;
-    /// SERVO_WRITE.
-    pub const SERVO_WRITE: u8 = 8;
-    /// SERVO_DETACH.
-    pub const SERVO_DETACH: u8 = 9;
-    /// I2C_BEGIN.
-    pub const I2C_BEGIN: u8 = 10;
-    /// I2C_READ.
-    pub const I2C_READ: u8 = 11;
-    /// I2C_WRITE.
-    pub const I2C_WRITE: u8 = 12;
-    /// SONAR_NEW.
-    pub const SONAR_NEW: u8 = 13;
-    /// DHT_NEW.
-    pub const DHT_NEW: u8 = 14;
-    /// STOP_ALL_REPORTS.
-    pub const STOP_ALL_REPORTS: u8 = 15;
-    /// ENABLE_ALL_REPORTS.
-    pub const ENABLE_ALL_REPORTS: u8 = 16;
-    /// RESET_DATA.
-    pub const RESET_DATA: u8 = 17;
-    /// RESET_BOARD.
-    pub const RESET_BOARD: u8 = 18;
-    /// INITIALIZE_NEO_PIXELS.
-    pub const INITIALIZE_NEO_PIXELS: u8 = 19;
-    /// SHOW_NEO_PIXELS.
-    pub const SHOW_NEO_PIXELS: u8 = 20;
-    /// SET_NEO_PIXEL.
-    pub const SET_NEO_PIXEL: u8 = 21;
-    /// CLEAR_ALL_NEO_PIXELS.
-    pub const CLEAR_ALL_NEO_PIXELS: u8 = 22;
-    /// FILL_NEO_PIXELS.
-    pub const FILL_NEO_PIXELS: u8 = 23;
-    /// SPI_INIT.
-    pub const SPI_INIT: u8 = 24;
-    /// SPI_WRITE_BLOCKING.
-    pub const SPI_WRITE_BLOCKING: u8 = 25;
-    /// SPI_READ_BLOCKING.
-    pub const SPI_READ_BLOCKING: u8 = 26;
-    /// SPI_SET_FORMAT.
-    pub const SPI_SET_FORMAT: u8 = 27;
-    /// SPI_CS_CONTROL.
-    pub const SPI_CS_CONTROL: u8 = 28;
-    /// SET_SCAN_DELAY.
-    pub const SET_SCAN_DELAY: u8 = 29;
-    /// ENCODER_NEW.
-    pub const ENCODER_NEW: u8 = 30;
-    /// SENSOR_NEW.
-    pub const SENSOR_NEW: u8 = 31;
-    /// PING.
-    pub const PING: u8 = 32;
-    /// MODULE_NEW.
-    pub const MODULE_NEW: u8 = 33;
-    /// MODULE_DATA.
-    pub const MODULE_DATA: u8 = 34;
-    /// GET_ID.
-    pub const GET_ID: u8 = 35;
-    /// SET_ID.
-    pub const SET_ID: u8 = 36;
-    /// FEATURE_CHECK.
-    pub const FEATURE_CHECK: u8 = 37;
-    /// BOOTLOADER_RESET.
-    pub const BOOTLOADER_RESET: u8 = 38;
-}
 
 use command_id as id;
 
@@ -143,7 +63,6 @@ pub(crate) const fn command_len_range(dialect: Dialect, id: u8) -> Option<(u8, u
 }
 
 /// Pull resistor of a digital input (SET_PIN_MODE modes 0, 3, 4).
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Pull {
@@ -157,7 +76,6 @@ pub enum Pull {
 }
 
 /// A pin mode with its SET_PIN_MODE tail (spec §4.1).
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum PinMode {
@@ -183,7 +101,6 @@ pub enum PinMode {
 }
 
 /// One pin of a PWM_WRITE.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct PwmPin {
@@ -197,7 +114,6 @@ pub struct PwmPin {
 pub type PwmPins = List<PwmPin, 9>;
 
 /// MODIFY_REPORTING (spec §4.2).
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ModifyReporting {
@@ -228,7 +144,6 @@ pub enum ModifyReporting {
 }
 
 /// A colour for the neopixel commands.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Rgb {
@@ -241,7 +156,6 @@ pub struct Rgb {
 }
 
 /// Encoder kind of ENCODER_NEW.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum EncoderKind {
@@ -252,7 +166,6 @@ pub enum EncoderKind {
 }
 
 /// Pull resistors of ENCODER_NEW's pins (mirte 1.3 only; bit 0 up, bit 1 down).
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Pulls {
@@ -262,24 +175,22 @@ pub struct Pulls {
     pub down: bool,
 }
 
-/// A command, host → Pico. `B` holds the variable byte fields: `&[u8]` when
-/// parsed from a frame (see [`CommandRef`]) or for encoding borrowed data,
-/// [`Payload`] in the owned form ([`OwnedCommand`]).
+/// A command, host → Pico. Variable byte fields (I2C and SPI data, chip
+/// selects, MODULE_NEW bus ids, MODULE_DATA) borrow from the frame they were
+/// parsed from or from the caller; [`CommandBuf`](super::CommandBuf) is the
+/// owned form.
 ///
 /// Every variant is encoded with its full payload (the firmware never clears
 /// its command buffer); the encoder refuses values the firmware would
 /// mishandle (pins ≥ 30, counts above the spec §4 maxima, ids the dialect does
 /// not define).
 ///
-/// With the `serde` feature, byte fields serialize as sequences of numbers
-/// whether `B` is `&[u8]` or a [`Payload`], so a [`CommandRef`] and its
-/// [`OwnedCommand`] serialize alike. Deserialize an [`OwnedCommand`]: its
-/// fields refuse more bytes than they hold. A [`CommandRef`] deserializes only
-/// from formats that hand out borrowed bytes (postcard, bincode; not JSON).
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+/// With the `serde` feature it serializes in the JSON-lines schema of the
+/// `robowire` tool (`{"type":"ping","counter":7}`); deserialize a
+/// [`CommandBuf`](super::CommandBuf), which owns its bytes.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Command<B> {
+pub enum Command<'a> {
     /// 0 SERIAL_LOOP_BACK: the Pico echoes `byte` in report 0.
     LoopBack {
         /// The byte to echo.
@@ -296,8 +207,8 @@ pub enum Command<B> {
     DigitalWrite {
         /// GPIO number (< 30).
         pin: u8,
-        /// Level.
-        high: bool,
+        /// Level (`true` is high).
+        value: bool,
     },
     /// 3 PWM_WRITE (k pins at once in mirte 1.3).
     PwmWrite(PwmPins),
@@ -375,7 +286,7 @@ pub enum Command<B> {
         /// 0 or 1.
         no_stop: u8,
         /// 1..=24 bytes.
-        data: B,
+        data: &'a [u8],
     },
     /// 12 I2C_WRITE, upstream layout (no `msg_id`).
     I2cWriteUpstream {
@@ -386,7 +297,7 @@ pub enum Command<B> {
         /// 0 or 1.
         no_stop: u8,
         /// 1..=25 bytes.
-        data: B,
+        data: &'a [u8],
     },
     /// 13 SONAR_NEW (`trig == echo`: single-pin sonar). At most 4 are used.
     SonarNew {
@@ -453,14 +364,14 @@ pub enum Command<B> {
         /// Clock frequency in Hz (≥ 1).
         freq_hz: u32,
         /// Chip-select GPIOs (each < 30), at most 20.
-        cs_pins: B,
+        cs_pins: &'a [u8],
     },
     /// 25 SPI_WRITE_BLOCKING.
     SpiWrite {
         /// 0 or 1.
         port: u8,
         /// At most 27 bytes.
-        data: B,
+        data: &'a [u8],
     },
     /// 26 SPI_READ_BLOCKING: answered by report 13.
     SpiRead {
@@ -502,8 +413,9 @@ pub enum Command<B> {
         pin_a: u8,
         /// GPIO B (< 30); 0 for [`EncoderKind::Single`].
         pin_b: u8,
-        /// Pull resistors (must be none in mirte 1.2, which lacks the byte).
-        pulls: Pulls,
+        /// Pull resistors: present in mirte 1.3, whose frame carries the
+        /// byte; `None` in mirte 1.2, whose frame does not.
+        pulls: Option<Pulls>,
     },
     /// 31 SENSOR_NEW (mirte 1.3).
     SensorNew(SensorNew),
@@ -513,14 +425,14 @@ pub enum Command<B> {
         counter: u8,
     },
     /// 33 MODULE_NEW (mirte 1.3).
-    ModuleNew(ModuleNew<B>),
+    ModuleNew(ModuleNew<'a>),
     /// 34 MODULE_DATA (mirte 1.3): build typed data with
     /// [`Command::module_data`], read it with the module's `parse`.
     ModuleData {
         /// Module number (modules are numbered 0, 1, 2, … in creation order).
         module_num: u8,
         /// 1..=28 bytes for the module.
-        data: B,
+        data: &'a [u8],
     },
     /// 35 GET_ID (mirte 1.3): answered by report 35.
     GetId,
@@ -538,17 +450,7 @@ pub enum Command<B> {
     BootloaderReset,
 }
 
-/// A command borrowing its variable fields from a frame or the caller.
-pub type CommandRef<'a> = Command<&'a [u8]>;
-
-/// Capacity of [`OwnedCommand`]'s byte fields: the longest variable field
-/// (MODULE_DATA's data).
-pub const COMMAND_PAYLOAD_MAX: usize = 28;
-
-/// A command owning its variable fields.
-pub type OwnedCommand = Command<Payload<COMMAND_PAYLOAD_MAX>>;
-
-impl<B> Command<B> {
+impl Command<'_> {
     /// The command id.
     pub const fn id(&self) -> u8 {
         match self {
@@ -593,232 +495,13 @@ impl<B> Command<B> {
             Command::BootloaderReset => id::BOOTLOADER_RESET,
         }
     }
-
-    /// The same command with its byte fields converted by `f`.
-    pub fn map_bytes<C>(self, mut f: impl FnMut(B) -> C) -> Command<C> {
-        match self {
-            Command::I2cWrite {
-                port,
-                addr,
-                msg_id,
-                no_stop,
-                data,
-            } => Command::I2cWrite {
-                port,
-                addr,
-                msg_id,
-                no_stop,
-                data: f(data),
-            },
-            Command::I2cWriteUpstream {
-                port,
-                addr,
-                no_stop,
-                data,
-            } => Command::I2cWriteUpstream {
-                port,
-                addr,
-                no_stop,
-                data: f(data),
-            },
-            Command::SpiInit {
-                port,
-                pin_a,
-                pin_b,
-                clk,
-                freq_hz,
-                cs_pins,
-            } => Command::SpiInit {
-                port,
-                pin_a,
-                pin_b,
-                clk,
-                freq_hz,
-                cs_pins: f(cs_pins),
-            },
-            Command::SpiWrite { port, data } => Command::SpiWrite {
-                port,
-                data: f(data),
-            },
-            Command::ModuleNew(m) => Command::ModuleNew(m.map_bytes(f)),
-            Command::ModuleData { module_num, data } => Command::ModuleData {
-                module_num,
-                data: f(data),
-            },
-            // Every other variant has no byte field: `plain` copies it.
-            other => other.plain().unwrap_or(Command::ResetData),
-        }
-    }
-
-    /// A copy of a variant without byte fields (`None` for the others).
-    fn plain<C>(&self) -> Option<Command<C>> {
-        Some(match *self {
-            Command::LoopBack { byte } => Command::LoopBack { byte },
-            Command::SetPinMode { pin, mode } => Command::SetPinMode { pin, mode },
-            Command::DigitalWrite { pin, high } => Command::DigitalWrite { pin, high },
-            Command::PwmWrite(p) => Command::PwmWrite(p),
-            Command::ModifyReporting(m) => Command::ModifyReporting(m),
-            Command::GetFirmwareVersion => Command::GetFirmwareVersion,
-            Command::GetUniqueId => Command::GetUniqueId,
-            Command::ServoAttach { pin, pulse_range } => Command::ServoAttach { pin, pulse_range },
-            Command::ServoWrite { pin, pulse_us } => Command::ServoWrite { pin, pulse_us },
-            Command::ServoDetach { pin } => Command::ServoDetach { pin },
-            Command::I2cBegin { port, sda, scl } => Command::I2cBegin { port, sda, scl },
-            Command::I2cRead {
-                port,
-                addr,
-                msg_id,
-                reg,
-                len,
-                no_stop,
-            } => Command::I2cRead {
-                port,
-                addr,
-                msg_id,
-                reg,
-                len,
-                no_stop,
-            },
-            Command::I2cReadUpstream {
-                port,
-                addr,
-                reg,
-                len,
-                no_stop,
-            } => Command::I2cReadUpstream {
-                port,
-                addr,
-                reg,
-                len,
-                no_stop,
-            },
-            Command::SonarNew { trig, echo } => Command::SonarNew { trig, echo },
-            Command::DhtNew { pin } => Command::DhtNew { pin },
-            Command::StopAllReports => Command::StopAllReports,
-            Command::EnableAllReports => Command::EnableAllReports,
-            Command::ResetData => Command::ResetData,
-            Command::ResetBoard => Command::ResetBoard,
-            Command::InitNeoPixels { pin, count, rgb } => {
-                Command::InitNeoPixels { pin, count, rgb }
-            }
-            Command::ShowNeoPixels => Command::ShowNeoPixels,
-            Command::SetNeoPixel {
-                index,
-                rgb,
-                auto_show,
-            } => Command::SetNeoPixel {
-                index,
-                rgb,
-                auto_show,
-            },
-            Command::ClearAllNeoPixels { auto_show } => Command::ClearAllNeoPixels { auto_show },
-            Command::FillNeoPixels { rgb, auto_show } => Command::FillNeoPixels { rgb, auto_show },
-            Command::SpiRead { port, len, tx_fill } => Command::SpiRead { port, len, tx_fill },
-            Command::SpiSetFormat {
-                port,
-                data_bits,
-                cpol,
-                cpha,
-            } => Command::SpiSetFormat {
-                port,
-                data_bits,
-                cpol,
-                cpha,
-            },
-            Command::SpiCsControl { cs_pin, high } => Command::SpiCsControl { cs_pin, high },
-            Command::SetScanDelay { delay_ms } => Command::SetScanDelay { delay_ms },
-            Command::EncoderNew {
-                kind,
-                pin_a,
-                pin_b,
-                pulls,
-            } => Command::EncoderNew {
-                kind,
-                pin_a,
-                pin_b,
-                pulls,
-            },
-            Command::SensorNew(s) => Command::SensorNew(s),
-            Command::Ping { counter } => Command::Ping { counter },
-            Command::GetId => Command::GetId,
-            Command::SetId { id } => Command::SetId { id },
-            Command::FeatureCheck { msg_type } => Command::FeatureCheck { msg_type },
-            Command::BootloaderReset => Command::BootloaderReset,
-            Command::I2cWrite { .. }
-            | Command::I2cWriteUpstream { .. }
-            | Command::SpiInit { .. }
-            | Command::SpiWrite { .. }
-            | Command::ModuleNew(_)
-            | Command::ModuleData { .. } => return None,
-        })
-    }
 }
 
-impl<B: AsRef<[u8]>> Command<B> {
-    /// A borrowed view of this command.
-    pub fn as_ref(&self) -> CommandRef<'_> {
-        match self {
-            Command::I2cWrite {
-                port,
-                addr,
-                msg_id,
-                no_stop,
-                data,
-            } => Command::I2cWrite {
-                port: *port,
-                addr: *addr,
-                msg_id: *msg_id,
-                no_stop: *no_stop,
-                data: data.as_ref(),
-            },
-            Command::I2cWriteUpstream {
-                port,
-                addr,
-                no_stop,
-                data,
-            } => Command::I2cWriteUpstream {
-                port: *port,
-                addr: *addr,
-                no_stop: *no_stop,
-                data: data.as_ref(),
-            },
-            Command::SpiInit {
-                port,
-                pin_a,
-                pin_b,
-                clk,
-                freq_hz,
-                cs_pins,
-            } => Command::SpiInit {
-                port: *port,
-                pin_a: *pin_a,
-                pin_b: *pin_b,
-                clk: *clk,
-                freq_hz: *freq_hz,
-                cs_pins: cs_pins.as_ref(),
-            },
-            Command::SpiWrite { port, data } => Command::SpiWrite {
-                port: *port,
-                data: data.as_ref(),
-            },
-            Command::ModuleNew(m) => Command::ModuleNew(m.as_ref()),
-            Command::ModuleData { module_num, data } => Command::ModuleData {
-                module_num: *module_num,
-                data: data.as_ref(),
-            },
-            other => other.plain().unwrap_or(Command::ResetData),
-        }
-    }
-
-    /// An owned copy (byte fields copied into [`Payload`]s).
-    pub fn to_owned(&self) -> OwnedCommand {
-        self.as_ref().map_bytes(Payload::truncating)
-    }
-
+impl<'a> Command<'a> {
     /// Frame length of this command in `dialect`.
-    pub fn encoded_len_in(&self, dialect: Dialect) -> usize {
+    pub fn encoded_len_in(&self, _dialect: Dialect) -> usize {
         let mut w = Writer::new(&mut []);
-        self.write(&mut w, dialect);
+        self.write(&mut w);
         w.len()
     }
 
@@ -828,16 +511,16 @@ impl<B: AsRef<[u8]>> Command<B> {
         self.check_dialect(dialect)?;
         self.check_sizes()?;
         let n = self.encoded_len_in(dialect);
-        if n > MAX_COMMAND_LEN + 1 {
+        if n > MAX_COMMAND_FRAME {
             return Err(EncodeError::TooLong {
                 len: n - 1,
                 max: MAX_COMMAND_LEN,
             });
         }
         check_room(out, n)?;
-        let mut scratch = [0u8; MAX_COMMAND_LEN + 1];
+        let mut scratch = [0u8; MAX_COMMAND_FRAME];
         let mut w = Writer::new(&mut scratch);
-        self.write(&mut w, dialect);
+        self.write(&mut w);
         let frame = scratch.get(..n).unwrap_or(&[]);
         // The decoder is the one definition of a valid frame: the encoder
         // emits nothing it would reject.
@@ -872,11 +555,14 @@ impl<B: AsRef<[u8]>> Command<B> {
                     max: 1,
                 })
             }
-            Command::EncoderNew { pulls, .. }
-                if dialect == Dialect::Mirte12 && *pulls != Pulls::default() =>
-            {
+            Command::EncoderNew { pulls: Some(_), .. } if dialect != Dialect::Mirte13 => {
                 Err(EncodeError::Inconsistent {
                     what: "mirte 1.2 firmware has no encoder pull setting",
+                })
+            }
+            Command::EncoderNew { pulls: None, .. } if dialect == Dialect::Mirte13 => {
+                Err(EncodeError::Inconsistent {
+                    what: "mirte 1.3 firmware takes ENCODER_NEW with pulls",
                 })
             }
             _ => Ok(()),
@@ -886,12 +572,12 @@ impl<B: AsRef<[u8]>> Command<B> {
     /// The per-command maxima of spec §4 for byte fields.
     fn check_sizes(&self) -> Result<(), EncodeError> {
         let (len, max) = match self {
-            Command::I2cWrite { data, .. } => (data.as_ref().len(), 24),
-            Command::I2cWriteUpstream { data, .. } => (data.as_ref().len(), 25),
-            Command::SpiInit { cs_pins, .. } => (cs_pins.as_ref().len(), 20),
-            Command::SpiWrite { data, .. } => (data.as_ref().len(), 27),
-            Command::ModuleData { data, .. } => (data.as_ref().len(), COMMAND_PAYLOAD_MAX),
-            Command::ModuleNew(m) => (m.init_len(), super::module::MODULE_INIT_MAX),
+            Command::I2cWrite { data, .. } => (data.len(), 24),
+            Command::I2cWriteUpstream { data, .. } => (data.len(), 25),
+            Command::SpiInit { cs_pins, .. } => (cs_pins.len(), 20),
+            Command::SpiWrite { data, .. } => (data.len(), 27),
+            Command::ModuleData { data, .. } => (data.len(), COMMAND_PAYLOAD_MAX),
+            Command::ModuleNew(m) => (m.init_len(), MODULE_INIT_MAX),
             _ => return Ok(()),
         };
         if len > max {
@@ -901,15 +587,41 @@ impl<B: AsRef<[u8]>> Command<B> {
         }
     }
 
+    /// Write the frame into `out` without checking it; returns its length
+    /// (which may exceed `out`, whose bytes past the end are then not
+    /// written). The bytes do not depend on the dialect.
+    pub(crate) fn write_unchecked(&self, out: &mut [u8]) -> usize {
+        let mut w = Writer::new(out);
+        self.write(&mut w);
+        w.len()
+    }
+
+    /// The dialects whose layout this variant has, most recent first: a
+    /// frame this command encodes to parses back to it in each of them where
+    /// it is valid.
+    pub(crate) const fn home_dialects(&self) -> &'static [Dialect] {
+        match self {
+            Command::I2cReadUpstream { .. } | Command::I2cWriteUpstream { .. } => {
+                &[Dialect::Upstream11]
+            }
+            Command::I2cRead { .. } | Command::I2cWrite { .. } => {
+                &[Dialect::Mirte13, Dialect::Mirte12]
+            }
+            Command::EncoderNew { pulls: Some(_), .. } => &[Dialect::Mirte13],
+            Command::EncoderNew { pulls: None, .. } => &[Dialect::Mirte12],
+            _ => &Dialect::ALL,
+        }
+    }
+
     /// Write the whole frame; `LEN` is filled in once the payload is written.
-    fn write(&self, w: &mut Writer<'_>, dialect: Dialect) {
+    fn write(&self, w: &mut Writer<'_>) {
         w.u8(0);
         w.u8(self.id());
-        self.write_payload(w, dialect);
+        self.write_payload(w);
         w.patch_len();
     }
 
-    fn write_payload(&self, w: &mut Writer<'_>, dialect: Dialect) {
+    fn write_payload(&self, w: &mut Writer<'_>) {
         match self {
             Command::LoopBack { byte } => w.u8(*byte),
             Command::SetPinMode { pin, mode } => {
@@ -935,9 +647,9 @@ impl<B: AsRef<[u8]>> Command<B> {
                     }
                 }
             }
-            Command::DigitalWrite { pin, high } => {
+            Command::DigitalWrite { pin, value } => {
                 w.u8(*pin);
-                w.flag(*high);
+                w.flag(*value);
             }
             Command::PwmWrite(pins) => {
                 for p in pins {
@@ -991,7 +703,6 @@ impl<B: AsRef<[u8]>> Command<B> {
                 no_stop,
                 data,
             } => {
-                let data = data.as_ref();
                 w.bytes(&[*port, *addr, *msg_id, data.len() as u8, *no_stop]);
                 w.bytes(data);
             }
@@ -1001,7 +712,6 @@ impl<B: AsRef<[u8]>> Command<B> {
                 no_stop,
                 data,
             } => {
-                let data = data.as_ref();
                 w.bytes(&[*port, *addr, data.len() as u8, *no_stop]);
                 w.bytes(data);
             }
@@ -1045,12 +755,10 @@ impl<B: AsRef<[u8]>> Command<B> {
             } => {
                 w.bytes(&[*port, *pin_a, *pin_b, *clk]);
                 w.u32(*freq_hz);
-                let cs = cs_pins.as_ref();
-                w.u8(cs.len() as u8);
-                w.bytes(cs);
+                w.u8(cs_pins.len() as u8);
+                w.bytes(cs_pins);
             }
             Command::SpiWrite { port, data } => {
-                let data = data.as_ref();
                 w.bytes(&[*port, data.len() as u8]);
                 w.bytes(data);
             }
@@ -1081,7 +789,7 @@ impl<B: AsRef<[u8]>> Command<B> {
                     EncoderKind::Quadrature => 2,
                 });
                 w.bytes(&[*pin_a, *pin_b]);
-                if dialect == Dialect::Mirte13 {
+                if let Some(pulls) = pulls {
                     w.u8(u8::from(pulls.up) | (u8::from(pulls.down) << 1));
                 }
             }
@@ -1090,7 +798,7 @@ impl<B: AsRef<[u8]>> Command<B> {
             Command::ModuleNew(m) => m.write(w),
             Command::ModuleData { module_num, data } => {
                 w.u8(*module_num);
-                w.bytes(data.as_ref());
+                w.bytes(data);
             }
             Command::SetId { id } => w.u8(*id),
             Command::FeatureCheck { msg_type } => w.u8(*msg_type),
@@ -1098,8 +806,8 @@ impl<B: AsRef<[u8]>> Command<B> {
     }
 }
 
-impl<B: AsRef<[u8]>> Encode for Command<B> {
-    const MAX_LEN: usize = MAX_COMMAND_LEN + 1;
+impl Encode for Command<'_> {
+    const MAX_LEN: usize = MAX_COMMAND_FRAME;
 
     /// The frame length in the default dialect (mirte 1.3).
     fn encoded_len(&self) -> usize {
@@ -1113,21 +821,10 @@ impl<B: AsRef<[u8]>> Encode for Command<B> {
     }
 }
 
-/// Split a frame into `LEN`, id and payload, checking that `LEN` matches.
-pub(crate) fn split_frame(frame: &[u8]) -> Result<(u8, u8, &[u8]), Error> {
-    match frame {
-        [len, id, payload @ ..] if usize::from(*len) == payload.len() + 1 => {
-            Ok((*len, *id, payload))
-        }
-        [len, id, ..] => Err(Error::BadLength { id: *id, len: *len }),
-        _ => Err(Error::Truncated { len: frame.len() }),
-    }
-}
-
 /// Parse one complete command frame (`LEN` byte first) for `dialect`. This is
 /// the one definition of a valid command: the decoder accepts exactly what it
 /// accepts, and the encoder emits nothing it rejects.
-pub fn parse_command(dialect: Dialect, frame: &[u8]) -> Result<CommandRef<'_>, Error> {
+pub(crate) fn parse_command(dialect: Dialect, frame: &[u8]) -> Result<Command<'_>, Error> {
     let (len, cmd, payload) = split_frame(frame)?;
     let Some((min, max)) = command_len_range(dialect, cmd) else {
         return Err(Error::UnknownId { id: cmd });
@@ -1165,7 +862,7 @@ fn counted<'a>(r: &mut Reader<'a>, field: &'static str, min: u8) -> Result<&'a [
     r.take(usize::from(n))
 }
 
-fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<CommandRef<'a>, Error> {
+fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>, Error> {
     let cmd = r.id();
     Ok(match cmd {
         id::SERIAL_LOOP_BACK => Command::LoopBack { byte: r.u8()? },
@@ -1195,14 +892,14 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<CommandRef<
             };
             let pin_ok = match mode {
                 PinMode::AnalogInput { .. } => analog_pin_ok(dialect, pin),
-                _ => pin < super::PIN_COUNT,
+                _ => pin < PIN_COUNT,
             };
             ensure(pin_ok, cmd, "pin")?;
             Command::SetPinMode { pin, mode }
         }
         id::DIGITAL_WRITE => Command::DigitalWrite {
             pin: r.pin("pin")?,
-            high: r.flag("value")?,
+            value: r.flag("value")?,
         },
         id::PWM_WRITE => {
             let mut pins = PwmPins::new();
@@ -1218,7 +915,7 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<CommandRef<
         id::MODIFY_REPORTING => {
             let kind = r.u8()?;
             let pin = r.u8()?;
-            let digital_ok = dialect != Dialect::Mirte13 && pin < super::PIN_COUNT;
+            let digital_ok = dialect != Dialect::Mirte13 && pin < PIN_COUNT;
             let m = match kind {
                 0 if pin == 0 => ModifyReporting::DisableAll,
                 1 if analog_pin_ok(dialect, pin) => ModifyReporting::EnableAnalog { pin },
@@ -1363,7 +1060,7 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<CommandRef<
             let freq_hz = r.u32()?;
             ensure(freq_hz >= 1, cmd, "freq_hz")?;
             let cs_pins = counted(r, "cs count", 0)?;
-            ensure(cs_pins.iter().all(|&p| p < super::PIN_COUNT), cmd, "cs_pin")?;
+            ensure(cs_pins.iter().all(|&p| p < PIN_COUNT), cmd, "cs_pin")?;
             Command::SpiInit {
                 port,
                 pin_a,
@@ -1420,12 +1117,12 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<CommandRef<
             let pulls = if dialect == Dialect::Mirte13 {
                 let bits = r.u8()?;
                 ensure(bits <= 3, cmd, "pulls")?;
-                Pulls {
+                Some(Pulls {
                     up: bits & 1 != 0,
                     down: bits & 2 != 0,
-                }
+                })
             } else {
-                Pulls::default()
+                None
             };
             Command::EncoderNew {
                 kind,
@@ -1449,4 +1146,31 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<CommandRef<
         id::BOOTLOADER_RESET => Command::BootloaderReset,
         _ => return Err(Error::UnknownId { id: cmd }),
     })
+}
+
+impl<'a> Command<'a> {
+    /// Parse one complete command frame (`LEN` byte first, nothing after the
+    /// frame) of `dialect`. [`TryFrom<&[u8]>`](#impl-TryFrom%3C%26%5Bu8%5D%3E-for-Command%3C'a%3E)
+    /// parses mirte 1.3.
+    ///
+    /// ```
+    /// use robowire::telemetrix::{Command, Dialect};
+    ///
+    /// let ping = Command::parse_in(&[0x02, 0x20, 0x07], Dialect::Mirte12)?;
+    /// assert_eq!(ping, Command::Ping { counter: 7 });
+    /// # Ok::<(), robowire::telemetrix::Error>(())
+    /// ```
+    pub fn parse_in(frame: &'a [u8], dialect: Dialect) -> Result<Self, Error> {
+        parse_command(dialect, frame)
+    }
+}
+
+/// Parse one complete mirte 1.3 command frame (`LEN` byte first); see
+/// [`Command::parse_in`] for other dialects.
+impl<'a> TryFrom<&'a [u8]> for Command<'a> {
+    type Error = Error;
+
+    fn try_from(frame: &'a [u8]) -> Result<Self, Error> {
+        parse_command(Dialect::Mirte13, frame)
+    }
 }

@@ -2,7 +2,6 @@
 
 /// Which firmware the codec talks to. The differences that are a table entry
 /// in spec §10 are covered; everything else is taken to be as in mirte 1.3.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Dialect {
@@ -22,6 +21,9 @@ pub enum Dialect {
 }
 
 impl Dialect {
+    /// Every dialect, most recent first.
+    pub const ALL: [Dialect; 3] = [Dialect::Mirte13, Dialect::Mirte12, Dialect::Upstream11];
+
     /// The firmware version this dialect's FIRMWARE_REPORT carries.
     pub const fn firmware_version(self) -> (u8, u8) {
         match self {

@@ -6,10 +6,11 @@ use crate::EncodeError;
 /// rejection comes from the frame's shape: an id the dialect does not define, a
 /// `LEN` that id cannot have, or a field value the firmware never sends.
 ///
-/// With the `serde` feature it serializes but does not deserialize:
+/// With the `serde` feature it serializes as the `robowire` tool prints a
+/// rejection (`{"error":"bad_length","id":2,"len_byte":7}`; `len_byte` is
+/// the `LEN` byte) but does not deserialize:
 /// [`OutOfRange`](Error::OutOfRange)'s `&'static str` field cannot be read
 /// back from input that does not live forever.
-#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]

@@ -1,14 +1,97 @@
 //! Finding frames: `LEN, id, payload` with no start byte and no checksum
-//! (spec §2, §11).
+//! (spec §2, §11), for one side of the link or both.
 
-use super::command::{command_len_range, parse_command, CommandRef, OwnedCommand};
+use core::marker::PhantomData;
+
+pub use crate::side::{Both, Device, Host};
+use crate::stream::{self, Check};
+
+use super::buf::{CommandBuf, Message, MessageBuf, ReportBuf};
+use super::command::{command_len_range, parse_command, Command};
 use super::dialect::Dialect;
 use super::error::Error;
-use super::report::{
-    parse_report_with, report_header_len, report_known, report_len_ok, OwnedReport, ReportRef,
-};
-use super::MAX_COMMAND_LEN;
-use crate::stream::{self, Check};
+use super::module::{ModuleNew, ModuleType};
+use super::report::{parse_report_with, report_header_len, report_known, report_len_ok, Report};
+use super::wire::{command_id, report_id, MAX_COMMAND_LEN};
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+impl sealed::Sealed for Host {}
+impl sealed::Sealed for Device {}
+impl sealed::Sealed for Both {}
+
+/// Which frames a [`Framing`] accepts (sealed: [`Host`] decodes reports,
+/// [`Device`] commands, [`Both`] either).
+pub trait Side: sealed::Sealed + Copy + Eq + core::hash::Hash + core::fmt::Debug + Default {
+    /// The message a decoder of this side yields borrowed.
+    type Message<'a>: Copy;
+    /// Its owned form.
+    type Owned;
+    /// Whether commands (host → Pico) are accepted.
+    const COMMANDS: bool;
+    /// Whether reports (Pico → host) are accepted.
+    const REPORTS: bool;
+    /// Parse one accepted frame.
+    fn parse(dialect: Dialect, lenient: bool, frame: &[u8]) -> Result<Self::Message<'_>, Error>;
+    /// The owned form of a message.
+    fn to_owned(message: Self::Message<'_>) -> Self::Owned;
+}
+
+impl Side for Host {
+    type Message<'a> = Report<'a>;
+    type Owned = ReportBuf;
+    const COMMANDS: bool = false;
+    const REPORTS: bool = true;
+
+    fn parse(dialect: Dialect, lenient: bool, frame: &[u8]) -> Result<Report<'_>, Error> {
+        parse_report_with(dialect, lenient, frame)
+    }
+
+    fn to_owned(message: Report<'_>) -> ReportBuf {
+        ReportBuf::from_parsed(&message)
+    }
+}
+
+impl Side for Device {
+    type Message<'a> = Command<'a>;
+    type Owned = CommandBuf;
+    const COMMANDS: bool = true;
+    const REPORTS: bool = false;
+
+    fn parse(dialect: Dialect, _lenient: bool, frame: &[u8]) -> Result<Command<'_>, Error> {
+        parse_command(dialect, frame)
+    }
+
+    fn to_owned(message: Command<'_>) -> CommandBuf {
+        CommandBuf::from_parsed(&message)
+    }
+}
+
+impl Side for Both {
+    type Message<'a> = Message<'a>;
+    type Owned = MessageBuf;
+    const COMMANDS: bool = true;
+    const REPORTS: bool = true;
+
+    /// A frame valid both ways reads as the report (see [`CaptureContext`]
+    /// to attribute it by what came before); a known command outranks a
+    /// lenient unknown report.
+    fn parse(dialect: Dialect, lenient: bool, frame: &[u8]) -> Result<Message<'_>, Error> {
+        let command = parse_command(dialect, frame);
+        let report = parse_report_with(dialect, lenient, frame);
+        match (command, report) {
+            (Ok(c), Ok(Report::Unknown { .. }) | Err(_)) => Ok(Message::Command(c)),
+            (_, Ok(r)) => Ok(Message::Report(r)),
+            (Err(_), Err(e)) => Err(e),
+        }
+    }
+
+    fn to_owned(message: Message<'_>) -> MessageBuf {
+        MessageBuf::from(&message)
+    }
+}
 
 /// Index of the first byte that is not `00`: a `00` length byte is dropped by
 /// the firmware, so it never starts a frame.
@@ -16,26 +99,34 @@ fn skip_zeros(bytes: &[u8]) -> usize {
     bytes.iter().position(|&b| b != 0).unwrap_or(bytes.len())
 }
 
-/// Framing of reports (Pico → host): what a host decodes.
+/// Telemetrix framing for [`StreamDecoder`](crate::StreamDecoder), for one
+/// [`Side`] of the link: [`Host`] decodes reports, [`Device`] commands,
+/// [`Both`] either (captures). See the [module docs](super) for what a
+/// candidate must satisfy.
 ///
-/// A candidate is accepted only if its id is a report of the dialect, its
-/// `LEN` is possible for that id (exact, or by the count / sub-type bytes of
-/// spec §11), and every field is one the firmware sends (pins < 30, flags
-/// 0/1, …). Anything else is rejected and the engine resyncs by one byte.
+/// ```
+/// use robowire::telemetrix::{Dialect, Framing, HostDecoder};
+///
+/// let decoder = HostDecoder::new(Framing::new().with_dialect(Dialect::Mirte12));
+/// # let _ = decoder;
+/// ```
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct ReportFraming {
+pub struct Framing<S> {
     dialect: Dialect,
     lenient: bool,
+    #[cfg_attr(feature = "serde", serde(skip))]
+    side: PhantomData<S>,
 }
 
-impl ReportFraming {
-    /// Reports of mirte firmware 1.3; unknown ids are corruption.
+impl<S: Side> Framing<S> {
+    /// Frames of mirte firmware 1.3; unknown ids are corruption.
     pub const fn new() -> Self {
         Self {
             dialect: Dialect::Mirte13,
             lenient: false,
+            side: PhantomData,
         }
     }
 
@@ -44,31 +135,40 @@ impl ReportFraming {
         Self { dialect, ..self }
     }
 
-    /// Accept report ids the dialect does not define (newer firmware) as
-    /// [`Report::Unknown`](super::Report::Unknown), skipped by their `LEN`,
-    /// but only when a valid known report follows directly (after optional
-    /// `00` bytes): without a checksum that is the only sign of being in
-    /// sync. Use it with [`LenientReportDecoder`](super::LenientReportDecoder),
-    /// whose buffer holds both frames. An unknown frame at the very end of the
-    /// input is rejected as truncated.
-    pub const fn lenient(self) -> Self {
-        Self {
-            lenient: true,
-            ..self
-        }
-    }
-
     /// The dialect.
     pub const fn dialect(&self) -> Dialect {
         self.dialect
     }
 
-    /// Whether unknown ids are accepted.
+    /// Whether unknown report ids are accepted (see
+    /// [`lenient`](Framing::lenient)).
     pub const fn is_lenient(&self) -> bool {
         self.lenient
     }
 
-    fn check_strict(&self, c: &[u8]) -> Check<Error> {
+    fn check_command(&self, candidate: &[u8]) -> Check<Error> {
+        let (len, cid) = match candidate {
+            [] => return Check::Need(1),
+            [_] => return Check::Need(2),
+            [len, cid, ..] => (*len, *cid),
+        };
+        let Some((min, max)) = command_len_range(self.dialect, cid) else {
+            return Check::Reject(Error::UnknownId { id: cid });
+        };
+        if len < min || len > max {
+            return Check::Reject(Error::BadLength { id: cid, len });
+        }
+        let total = usize::from(len) + 1;
+        match candidate.get(..total) {
+            None => Check::Need(total),
+            Some(frame) => match parse_command(self.dialect, frame) {
+                Ok(_) => Check::Frame(total),
+                Err(e) => Check::Reject(e),
+            },
+        }
+    }
+
+    fn check_report(&self, c: &[u8], lenient: bool) -> Check<Error> {
         let (len, rid) = match c {
             [] => return Check::Need(1),
             [0, ..] => return Check::Reject(Error::BadLength { id: 0, len: 0 }),
@@ -77,7 +177,7 @@ impl ReportFraming {
         };
         let total = usize::from(len) + 1;
         if !report_known(self.dialect, rid) {
-            return if self.lenient {
+            return if lenient {
                 self.check_unknown(c, rid, total)
             } else {
                 Check::Reject(Error::UnknownId { id: rid })
@@ -107,96 +207,66 @@ impl ReportFraming {
         if next.is_empty() {
             return Check::Need(c.len() + 1);
         }
-        let strict = Self {
-            lenient: false,
-            ..*self
-        };
-        match strict.check_strict(next) {
+        match self.check_report(next, false) {
             Check::Frame(_) => Check::Frame(total),
             Check::Need(n) => Check::Need(total + skip + n),
             Check::Reject(_) => Check::Reject(Error::UnknownId { id: rid }),
         }
     }
-}
 
-impl stream::FrameRules for ReportFraming {
-    type Error = Error;
-    type Message<'a> = ReportRef<'a>;
-    type Owned = OwnedReport;
-
-    /// `LEN` and id: enough to reject an unknown id or an impossible length.
-    const HEADER_LEN: usize = 2;
-
-    /// Without a checksum, plausible frames start inside most frames; the
-    /// engine's overlap test measured slightly worse recovery here (inserted
-    /// garbage 99.93 % instead of 100 % of intact frames), so it is off.
-    const VERIFY_AFTER_RESYNC: bool = false;
-
-    fn find_start(&self, bytes: &[u8]) -> usize {
-        skip_zeros(bytes)
-    }
-
-    fn check(&self, candidate: &[u8], _at_end: bool) -> Check<Error> {
-        self.check_strict(candidate)
-    }
-
-    fn truncated(&self, len: usize) -> Error {
-        Error::Truncated { len }
-    }
-
-    fn superseded(&self, len: usize) -> Error {
-        Error::Superseded { len }
-    }
-
-    fn is_checksum_error(&self, _error: &Error) -> bool {
-        false
-    }
-
-    fn parse<'a>(&self, frame: &'a [u8]) -> Result<ReportRef<'a>, Error> {
-        parse_report_with(self.dialect, self.lenient, frame)
-    }
-
-    fn to_owned(message: ReportRef<'_>) -> OwnedReport {
-        message.to_owned()
+    /// Either direction: a frame if either accepts it, rejected if both
+    /// reject it, undecided while either still needs bytes. Both read the
+    /// same `LEN`, so an accepted frame has one length.
+    fn check_both(&self, candidate: &[u8]) -> Check<Error> {
+        let command = self.check_command(candidate);
+        let report = self.check_report(candidate, self.lenient);
+        match (command, report) {
+            (Check::Frame(n), _) => Check::Frame(n),
+            (Check::Need(a), Check::Need(b)) => Check::Need(a.min(b)),
+            // A report cannot be complete while the command of the same LEN
+            // is not; should it ever be, wait for the command's answer.
+            (Check::Need(n), _) | (Check::Reject(_), Check::Need(n)) => Check::Need(n),
+            (Check::Reject(_), Check::Frame(n)) => Check::Frame(n),
+            // The error of the direction that got further: if the id is
+            // unknown as a report, the command's.
+            (Check::Reject(c), Check::Reject(Error::UnknownId { .. })) => Check::Reject(c),
+            (Check::Reject(_), Check::Reject(r)) => Check::Reject(r),
+        }
     }
 }
 
-/// Framing of commands (host → Pico): what a (simulated) Pico decodes.
-///
-/// Like the firmware, it drops length bytes `00` and above 30 before a frame
-/// starts. A candidate is accepted only if its id is a command of the
-/// dialect, its `LEN` fits that command, and every field is one the encoder
-/// would emit.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct CommandFraming {
-    dialect: Dialect,
-}
-
-impl CommandFraming {
-    /// Commands of mirte firmware 1.3.
-    pub const fn new() -> Self {
+impl Framing<Host> {
+    /// Accept report ids the dialect does not define (newer firmware) as
+    /// [`Report::Unknown`], skipped by their `LEN`, but only when a valid
+    /// known report follows directly (after optional `00` bytes): without a
+    /// checksum that is the only sign of being in sync. Use it with a
+    /// decoder of [`LENIENT_BUFFER`](super::LENIENT_BUFFER) bytes
+    /// ([`LenientHostDecoder`](super::LenientHostDecoder)), which holds both
+    /// frames. An unknown frame at the very end of the input is rejected as
+    /// truncated.
+    pub const fn lenient(self) -> Self {
         Self {
-            dialect: Dialect::Mirte13,
+            lenient: true,
+            ..self
         }
-    }
-
-    /// The same framing for `dialect`.
-    pub const fn with_dialect(self, dialect: Dialect) -> Self {
-        Self { dialect }
-    }
-
-    /// The dialect.
-    pub const fn dialect(&self) -> Dialect {
-        self.dialect
     }
 }
 
-impl stream::FrameRules for CommandFraming {
+impl Framing<Both> {
+    /// Accept unknown report ids as [`Framing<Host>::lenient`] does, when no
+    /// command reads the frame.
+    pub const fn lenient(self) -> Self {
+        Self {
+            lenient: true,
+            ..self
+        }
+    }
+}
+
+impl<S: Side> stream::FrameRules for Framing<S> {
     type Error = Error;
-    type Message<'a> = CommandRef<'a>;
-    type Owned = OwnedCommand;
+    type Message<'a> = S::Message<'a>;
+    type Owned = S::Owned;
 
     /// `LEN` and id: enough to reject an unknown id or an impossible length.
     const HEADER_LEN: usize = 2;
@@ -207,31 +277,23 @@ impl stream::FrameRules for CommandFraming {
     const VERIFY_AFTER_RESYNC: bool = false;
 
     fn find_start(&self, bytes: &[u8]) -> usize {
-        bytes
-            .iter()
-            .position(|&b| (1..=MAX_COMMAND_LEN as u8).contains(&b))
-            .unwrap_or(bytes.len())
+        if S::REPORTS {
+            // Skips `00` only: a LEN over 30 may start a report.
+            skip_zeros(bytes)
+        } else {
+            // Like the firmware, drop length bytes `00` and above 30.
+            bytes
+                .iter()
+                .position(|&b| (1..=MAX_COMMAND_LEN as u8).contains(&b))
+                .unwrap_or(bytes.len())
+        }
     }
 
     fn check(&self, candidate: &[u8], _at_end: bool) -> Check<Error> {
-        let (len, cid) = match candidate {
-            [] => return Check::Need(1),
-            [_] => return Check::Need(2),
-            [len, cid, ..] => (*len, *cid),
-        };
-        let Some((min, max)) = command_len_range(self.dialect, cid) else {
-            return Check::Reject(Error::UnknownId { id: cid });
-        };
-        if len < min || len > max {
-            return Check::Reject(Error::BadLength { id: cid, len });
-        }
-        let total = usize::from(len) + 1;
-        match candidate.get(..total) {
-            None => Check::Need(total),
-            Some(frame) => match parse_command(self.dialect, frame) {
-                Ok(_) => Check::Frame(total),
-                Err(e) => Check::Reject(e),
-            },
+        match (S::COMMANDS, S::REPORTS) {
+            (true, true) => self.check_both(candidate),
+            (true, false) => self.check_command(candidate),
+            _ => self.check_report(candidate, self.lenient),
         }
     }
 
@@ -247,11 +309,113 @@ impl stream::FrameRules for CommandFraming {
         false
     }
 
-    fn parse<'a>(&self, frame: &'a [u8]) -> Result<CommandRef<'a>, Error> {
-        parse_command(self.dialect, frame)
+    fn parse<'a>(&self, frame: &'a [u8]) -> Result<S::Message<'a>, Error> {
+        S::parse(self.dialect, self.lenient, frame)
     }
 
-    fn to_owned(message: CommandRef<'_>) -> OwnedCommand {
-        message.to_owned()
+    fn to_owned(message: S::Message<'_>) -> S::Owned {
+        S::to_owned(message)
+    }
+}
+
+/// What the frames of a capture so far say about the ones that follow, for
+/// tools that read a whole conversation (the `robowire` tool uses it):
+///
+/// * a frame valid both ways (a digital write is byte for byte a digital
+///   report) is attributed to the direction of the last frame that was valid
+///   one way only (to reports until there is one), and marked as valid the
+///   other way too ([`MessageBuf::also`]);
+/// * MODULE_NEW (or a module report) tells which type each module number
+///   has, so a later MODULE_DATA is typed ([`MessageBuf::module_type`]);
+///   RESET_BOARD and BOOTLOADER_RESET forget the modules.
+///
+/// It depends only on the frames in order, not on how the input was split.
+#[derive(Debug, Clone)]
+pub struct CaptureContext {
+    dialect: Dialect,
+    lenient: bool,
+    commands: bool,
+    reports: bool,
+    host_last: bool,
+    modules: [Option<ModuleType>; 256],
+}
+
+impl CaptureContext {
+    /// A context for the frames `framing` accepts.
+    pub const fn new<S: Side>(framing: &Framing<S>) -> Self {
+        Self {
+            dialect: framing.dialect,
+            lenient: framing.lenient,
+            commands: S::COMMANDS,
+            reports: S::REPORTS,
+            host_last: false,
+            modules: [None; 256],
+        }
+    }
+
+    /// Attribute `message` (a frame the framing accepted) and type its
+    /// MODULE_DATA; learn from it.
+    pub fn annotate(&mut self, message: &mut MessageBuf) {
+        let frame = message.frame();
+        let id = frame.get(1).copied().unwrap_or(0);
+        // One direction only: the frame is read the other way only when it
+        // may say something about modules.
+        let command_matters = self.reports
+            || matches!(
+                id,
+                command_id::MODULE_NEW
+                    | command_id::MODULE_DATA
+                    | command_id::RESET_BOARD
+                    | command_id::BOOTLOADER_RESET
+            );
+        let command = if self.commands && command_matters {
+            parse_command(self.dialect, frame).ok()
+        } else {
+            None
+        };
+        let report = if self.reports && (self.commands || id == report_id::MODULE) {
+            match parse_report_with(self.dialect, self.lenient, frame) {
+                // A known command outranks a lenient unknown report.
+                Ok(Report::Unknown { .. }) if command.is_some() => None,
+                other => other.ok(),
+            }
+        } else {
+            None
+        };
+        let (as_command, also) = match (&command, &report) {
+            (Some(_), Some(_)) => (self.host_last, true),
+            (Some(_), None) => (true, false),
+            (None, Some(_)) => (false, false),
+            (None, None) if self.commands != self.reports => (self.commands, false),
+            (None, None) => return,
+        };
+        let mut module_type = None;
+        if as_command {
+            if !also {
+                self.host_last = true;
+            }
+            match command {
+                Some(Command::ModuleNew(ModuleNew::Add { module_num, init })) => {
+                    self.modules[usize::from(module_num)] = Some(init.module_type());
+                }
+                // Modules are gone after a reboot.
+                Some(Command::ResetBoard | Command::BootloaderReset) => {
+                    self.modules = [None; 256];
+                }
+                Some(Command::ModuleData { module_num, .. }) => {
+                    module_type = self.modules[usize::from(module_num)];
+                }
+                _ => {}
+            }
+        } else {
+            if !also {
+                self.host_last = false;
+            }
+            if let Some(Report::Module { module_num, report }) = report {
+                self.modules[usize::from(module_num)] = Some(report.module_type());
+            }
+        }
+        message.attribute(self.dialect, self.lenient, as_command, also);
+        message.set_module_type(module_type);
     }
 }

@@ -47,13 +47,6 @@ impl<T: Copy + Default, const N: usize> List<T, N> {
         Ok(list)
     }
 
-    /// A copy of the first `N` items of `items` (used where the length is
-    /// already known to fit).
-    pub(crate) fn truncating(items: &[T]) -> Self {
-        let items = items.get(..N).unwrap_or(items);
-        Self::from_slice(items).unwrap_or_default()
-    }
-
     /// Append `item`, or [`EncodeError::TooLong`] if the list is full.
     pub fn push(&mut self, item: T) -> Result<(), EncodeError> {
         let slot = self

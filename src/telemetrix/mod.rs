@@ -14,126 +14,290 @@
 //! (Pico → host, [`Report`]) have separate id spaces; commands are at most 30
 //! bytes after `LEN`.
 //!
-//! # Messages and their byte fields
+//! # The vocabulary
 //!
-//! [`Command<B>`] and [`Report<B>`] are generic over the storage `B` of their
-//! variable byte fields (I2C/SPI data, feature extras, module data, servo
-//! positions):
+//! | | host → Pico | Pico → host | either |
+//! |---|---|---|---|
+//! | message (borrowed) | [`Command<'a>`](Command) | [`Report<'a>`](Report) | [`Message<'a>`](Message) |
+//! | owned form | [`CommandBuf`] | [`ReportBuf`] | [`MessageBuf`] |
+//! | framing | [`Framing<Device>`](Framing) | [`Framing<Host>`](Framing) | [`Framing<Both>`](Framing) |
+//! | decoder | [`DeviceDecoder`] ([`device_decoder()`]) | [`HostDecoder`] ([`host_decoder()`]) | [`BothDecoder`] ([`both_decoder()`]) |
+//! | buffer | [`DEVICE_BUFFER`] | [`HOST_BUFFER`] ([`LENIENT_BUFFER`] when lenient) | [`BOTH_BUFFER`] |
 //!
-//! * parsing borrows from the frame: [`CommandRef`], [`ReportRef`]
-//!   (`B = &[u8]`), and so does encoding borrowed data;
-//! * the owned form keeps them inline in a [`Payload`] (an array and a
-//!   length): [`OwnedCommand`], [`OwnedReport`]; it is what
-//!   [`StreamDecoder::feed`](crate::StreamDecoder::feed) yields.
+//! Buffers: 256 bytes for a host decoder (the longest report frame), 32 for
+//! a device decoder (the longest command frame is 31), 512 for a lenient or
+//! both-direction decoder (an unknown report and the frame that must follow
+//! it). Sizes on a 64-bit target (the buffer, then the engine's counters and
+//! indices, fewer on a 32-bit target): `size_of::<HostDecoder>()` is 360
+//! bytes, `size_of::<DeviceDecoder>()` 136, `size_of::<BothDecoder>()` and
+//! `size_of::<LenientHostDecoder>()` 616. The owned forms hold a whole frame:
+//! `CommandBuf` 32 bytes, `ReportBuf` 258, `MessageBuf` 261.
 //!
-//! Short fixed lists (PWM pins, servo moves, AS5600 angles) are always owned
-//! [`List`]s. `as_ref`, `to_owned` and `map_bytes` convert between forms.
-//!
-//! # Decoding
-//!
-//! [`ReportDecoder`] (host side) and [`CommandDecoder`] (Pico side) are the
-//! shared [`StreamDecoder`] with this protocol's
-//! framing. Without a checksum, a candidate is accepted only when its id is
-//! known, its `LEN` is the one that id (and its count or sub-type bytes)
-//! requires, and its fields are values the sender produces; otherwise the
-//! decoder drops one byte and rescans. `00` where a `LEN` would be is
-//! skipped, as the firmware does.
+//! Messages borrow their variable byte fields (I2C/SPI data, feature
+//! extras, module data, servo positions) from the frame or the caller;
+//! short fixed lists (PWM pins, servo moves, AS5600 angles) are owned
+//! [`List`]s. The owned forms keep the frame's bytes and parse them on
+//! access (`.message()`); `to_buf()` / [`TryFrom`] make one from a message,
+//! `From` goes back. One complete frame parses with `TryFrom<&[u8]>` (mirte
+//! 1.3) or `parse_in(frame, dialect)`.
 //!
 //! # Encoding
 //!
 //! Every message implements [`Encode`] for mirte 1.3;
-//! `encode_in(dialect, out)` or [`InDialect`] select another dialect. The
-//! encoder writes full payloads and refuses (with an
-//! [`EncodeError`]) anything its own decoder would
-//! reject: ids the dialect lacks, `LEN` over 30, the per-command maxima, pins
-//! ≥ 30.
+//! `encode_in(dialect, out)`, `to_buf_in(dialect)` or [`InDialect`] select
+//! another dialect. The encoder never emits a frame its own decoder would
+//! reject: after writing into a scratch buffer it runs the decoder's parser
+//! on the frame and copies it out only if that succeeds. So: no id outside
+//! the dialect (there is no raw-id path), no `LEN` over 30, the spec §4
+//! maxima (PWM 1..=9 pins, I2C read 1..=57, I2C write 1..=24, SPI write ≤ 27,
+//! SPI read ≤ 60, SPI CS ≤ 20, neopixels ≤ 100, module init ≤ 26, module
+//! data 1..=28), pins < 30, I2C addresses ≤ 0x7F, ports 0/1, flags 0/1, SPI
+//! data bits 4..=16, and always the full payload (SET_PIN_MODE tail,
+//! ENCODER_NEW pulls in mirte 1.3, SENSOR_NEW's 6 settings bytes, I2C_READ's
+//! 6 bytes). MODIFY_REPORTING for digital pins is refused in mirte 1.3, whose
+//! firmware indexes the pin as `pin − 26`.
 //!
 //! ```
-//! use robowire::telemetrix::{Command, Report, ReportDecoder, ReportFraming};
-//! use robowire::{Encode, FrameBuf};
+//! use robowire::telemetrix::{host_decoder, Command, Report};
 //!
 //! // Host → Pico: PING with counter 7.
-//! let ping = FrameBuf::<31>::encode(&Command::<&[u8]>::Ping { counter: 7 })?;
+//! let ping = Command::Ping { counter: 7 }.to_buf()?;
 //! assert_eq!(&ping[..], &[0x02, 0x20, 0x07]);
 //!
 //! // Pico → host: a PONG and a digital report, split anywhere.
-//! let mut decoder = ReportDecoder::new(ReportFraming::new());
+//! let mut decoder = host_decoder();
 //! let mut reports = Vec::new();
 //! for chunk in [&[0x03, 0x20][..], &[0x07, 0x2A, 0x03, 0x02, 0x0A, 0x01]] {
 //!     for event in decoder.feed(chunk) {
 //!         reports.push(event.unwrap().message);
 //!     }
 //! }
-//! assert_eq!(reports[0].as_ref(), Report::Pong { counter: 7, boot_id: 42 });
-//! assert_eq!(reports[1].as_ref(), Report::Digital { pin: 10, high: true });
+//! assert_eq!(reports[0].message(), Report::Pong { counter: 7, boot_id: 42 });
+//! assert_eq!(reports[1].message(), Report::Digital { pin: 10, value: true });
+//! assert_eq!(reports[1].message().to_string(), "digital_report pin=10 value=1");
 //! # Ok::<(), robowire::EncodeError>(())
 //! ```
+//!
+//! The Pico side decodes commands without copying them:
+//!
+//! ```
+//! use robowire::telemetrix::{device_decoder, Command, Report};
+//! use robowire::Encode;
+//!
+//! let mut pico = device_decoder();
+//! let mut input = &[0x00, 0x00, 0x02, 0x20, 0x07][..]; // padding, then PING 7
+//! while let Some(event) = pico.decode(&mut input) {
+//!     if let Command::Ping { counter } = event?.message {
+//!         let mut out = [0u8; 4];
+//!         let n = Report::Pong { counter, boot_id: 42 }.encode(&mut out)?;
+//!         assert_eq!(&out[..n], &[0x03, 0x20, 0x07, 0x2A]);
+//!     }
+//! }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # Decoder policy (resync without a checksum)
+//!
+//! `find_start` skips `00` where a `LEN` would be (the firmware drops it);
+//! the command framing also skips `LEN` > 30, as the firmware does. A
+//! candidate is then accepted only if **all** of this holds, else the engine
+//! drops one byte and rescans (resync by one):
+//!
+//! | Check | Reports | Commands |
+//! |---|---|---|
+//! | id | defined in the dialect (unknown = corruption) | defined in the dialect |
+//! | `LEN`, from the header | exact per id (0: 2, 2: 3, 3: 4, 5: 3, 6: 9, 8: 4, 9: 4, 12: 6, 14: 3, 21: 4, 32: 3, 33: 4, 35: 2, 36: 2, 99: 4); 11: 4 or 5; 10: `n + 6` (upstream `n + 5`), n 1..=57; 13: `n + 3`, n ≤ 60; 20: by sensor type; 34: by module type and subtype (Hiwonder positions `4 + 3k`); 37: by `msg_type` and `ok` | range per id, then exact by mode / subtype / count |
+//! | fields | pins < 30, analog pin 26..=30 (or ADC 0..=4), analog value ≤ 4095, flags 0/1, ports ≤ 1, I2C address ≤ 0x7F, I2C read pad byte `00`, sonar cm < 1000 or a sentinel, DHT hundredths < 100 and signs agreeing, encoder steps ≠ 0, PONG boot id < 100, sensor/module check subtype 0, AS5600 angles ≤ 4095, SSD1306 kind 1/3 and `254` marker | everything the encoder enforces |
+//!
+//! Variable reports are rejected as soon as their count or sub-type byte
+//! arrives, so a false `LEN` does not hold frames back for long. Events carry
+//! offsets; [`Stats`](crate::Stats) count frames, skipped bytes and
+//! rejections.
+//!
+//! **Both directions** ([`Framing<Both>`](Framing)): a candidate is a frame
+//! if either direction accepts it. Some frames are valid both ways (of ids
+//! 0, 2, 3, 8, 13, plus 34, 36 in mirte 1.3 and 12 in upstream 1.1: a
+//! digital write is byte for byte a digital report); the decoder reads them
+//! as reports, and a [`CaptureContext`] attributes them to the direction of
+//! the last frame that was valid one way only.
+//!
+//! **Lenient mode** (opt-in, reports only): [`Framing::lenient`] with a
+//! [`LenientHostDecoder`] accepts an unknown id as [`Report::Unknown`],
+//! skipped by its `LEN`, only when a valid known report follows directly
+//! (after optional `00`s): the framing is stateless, and a following frame is
+//! the only sign of being in sync. An unknown frame at the very end of the
+//! input is reported as truncated.
+//!
+//! # What cannot be detected without a checksum
+//!
+//! * Garbage (or a frame from the other core) that happens to form a valid
+//!   frame: `03 02` before `02 00 41` reads as DIGITAL pin 2 low, and the
+//!   loopback frame's first bytes are swallowed (a test pins this down).
+//! * A dropped or changed payload byte when the result is still in range (an
+//!   analog value, an I2C/SPI data byte, a sensor float, a counter): the
+//!   frame is delivered with the wrong value, and may swallow the next
+//!   frame's `LEN` byte.
+//! * Frames of unknown ids in strict mode are indistinguishable from garbage
+//!   and are resynced over byte by byte.
+//!
+//! # Limits
+//!
+//! * Stateful firmware rules are the caller's: ≤ 4 sonars, ≤ 2 DHTs, ≤ 4
+//!   encoders, module numbers 0, 1, 2, … in creation order, PING at least
+//!   every second (Hiwonder data is dropped unless the last PING is < 2 s
+//!   old), one write per frame and ≥ 100 ms of silence before the first.
+//! * MODULE_DATA does not say which module type it is for, so a parsed
+//!   command carries raw bytes; read them with the module's
+//!   [`ModuleCommand::parse`] (or let a [`CaptureContext`] type them).
+//! * Hiwonder positions are not range-checked (servos can report past 24000
+//!   cdeg); feature-check extras are carried raw.
+//!
+//! # serde
+//!
+//! With the `serde` feature, messages, their owned forms and [`Error`]
+//! serialize in the JSON-lines schema of the `robowire` tool (a `type` tag,
+//! snake_case, the tool's field names), and the owned forms deserialize from
+//! it, checked exactly as the encoder checks (deserializing *is* encoding:
+//! an owned form holds a valid frame). `MessageBuf::deserialize_in` reads
+//! another dialect. Decoders and encoders never allocate; reading JSON does.
 
+mod buf;
 mod command;
 mod dialect;
 mod error;
+mod fields;
 mod framing;
 mod list;
 mod module;
+mod names;
 mod report;
+#[cfg(feature = "serde")]
+mod schema;
 mod sensor;
 mod wire;
 
+pub use buf::{CommandBuf, Message, MessageBuf, ReportBuf};
 pub use command::{
-    command_id, parse_command, Command, CommandRef, EncoderKind, ModifyReporting, OwnedCommand,
-    PinMode, Pull, Pulls, PwmPin, PwmPins, Rgb, COMMAND_PAYLOAD_MAX,
+    Command, EncoderKind, ModifyReporting, PinMode, Pull, Pulls, PwmPin, PwmPins, Rgb,
 };
 pub use dialect::Dialect;
 pub use error::Error;
-pub use framing::{CommandFraming, ReportFraming};
+pub use framing::{Both, CaptureContext, Device, Framing, Host, Side};
 pub use list::{List, Payload};
 pub use module::{
     HiwonderCommand, ModuleCommand, ModuleInit, ModuleNew, ModuleReport, ModuleType,
     Pca9685Channel, Pca9685Command, Pca9685Config, RelayCommand, ServoMove, ServoPosition,
     ServoPositions, Ssd1306Command, Ssd1306Done, MODULE_INIT_MAX,
 };
-pub use report::{
-    parse_report, report_id, OwnedReport, Report, ReportRef, Sonar, SonarReading,
-    REPORT_PAYLOAD_MAX, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE,
-};
+pub use names::UnknownName;
+pub use report::{Report, Sonar, SonarReading, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
 pub use sensor::{SensorNew, SensorReading, SensorType};
+pub use wire::{
+    command_id, report_id, COMMAND_PAYLOAD_MAX, MAX_COMMAND_LEN, MAX_FRAME_LEN, PIN_COUNT,
+};
 
 use crate::{Encode, EncodeError, StreamDecoder};
 
-/// GPIOs on the RP2040: pins are `0..30`.
-pub const PIN_COUNT: u8 = 30;
+/// Buffer size of a [`HostDecoder`]: the longest report frame (256 bytes).
+pub const HOST_BUFFER: usize = wire::MAX_REPORT_FRAME;
 
-/// The firmware's `MAX_COMMAND_LENGTH`: the largest `LEN` of a command.
-pub const MAX_COMMAND_LEN: usize = 30;
+/// Buffer size of a [`DeviceDecoder`]: the longest command frame (31 bytes)
+/// and one more.
+pub const DEVICE_BUFFER: usize = 32;
 
-/// Buffer size of [`ReportDecoder`]: the longest report frame (256 bytes).
-pub const REPORT_BUFFER: usize = 256;
+/// Buffer size of a decoder whose framing is [`lenient`](Framing::lenient):
+/// an unknown report and the known frame that must follow it.
+pub const LENIENT_BUFFER: usize = 2 * wire::MAX_REPORT_FRAME;
 
-/// Buffer size of [`CommandDecoder`]: the longest command frame (31 bytes).
-pub const COMMAND_BUFFER: usize = 32;
+/// Buffer size of a [`BothDecoder`]: room for a lenient unknown report and
+/// the frame that must follow it.
+pub const BOTH_BUFFER: usize = LENIENT_BUFFER;
 
-/// Decoder of reports (the host side), for strict framings. Its buffer holds
-/// the longest report frame (256 bytes).
-pub type ReportDecoder = StreamDecoder<ReportFraming, REPORT_BUFFER>;
+/// Decoder of reports (the host side).
+pub type HostDecoder = StreamDecoder<Framing<Host>, HOST_BUFFER>;
 
-/// Decoder of reports for a [`ReportFraming::lenient`] framing: its buffer
-/// holds an unknown frame and the known frame that must follow it.
-pub type LenientReportDecoder = StreamDecoder<ReportFraming, 512>;
+/// Decoder of reports for a [`lenient`](Framing::lenient) framing.
+pub type LenientHostDecoder = StreamDecoder<Framing<Host>, LENIENT_BUFFER>;
 
-/// Decoder of commands (the Pico side). Its buffer holds the longest command
-/// frame (31 bytes).
-pub type CommandDecoder = StreamDecoder<CommandFraming, COMMAND_BUFFER>;
+/// Decoder of commands (the Pico side, or a simulator of it).
+pub type DeviceDecoder = StreamDecoder<Framing<Device>, DEVICE_BUFFER>;
 
-/// The host side's decoder, [`ReportDecoder`].
-pub type Decoder = ReportDecoder;
+/// Decoder of both directions (captures, sniffers, tooling).
+pub type BothDecoder = StreamDecoder<Framing<Both>, BOTH_BUFFER>;
 
-/// Whether `pin` names an analog input in `dialect`: GPIO 26..=30 (30 is the
-/// temperature sensor) in mirte 1.3, ADC 0..=4 before.
-pub(crate) const fn analog_pin_ok(dialect: Dialect, pin: u8) -> bool {
-    match dialect {
-        Dialect::Mirte13 => pin >= 26 && pin <= 30,
-        Dialect::Mirte12 | Dialect::Upstream11 => pin <= 4,
-    }
+/// A [`HostDecoder`] for mirte 1.3.
+pub const fn host_decoder() -> HostDecoder {
+    HostDecoder::new(Framing::new())
+}
+
+/// A [`DeviceDecoder`] for mirte 1.3.
+pub const fn device_decoder() -> DeviceDecoder {
+    DeviceDecoder::new(Framing::new())
+}
+
+/// A [`BothDecoder`] for mirte 1.3.
+pub const fn both_decoder() -> BothDecoder {
+    BothDecoder::new(Framing::new())
+}
+
+/// Renamed to [`HostDecoder`].
+#[deprecated(since = "0.2.0", note = "renamed to `HostDecoder`")]
+pub type ReportDecoder = HostDecoder;
+
+/// Renamed to [`DeviceDecoder`].
+#[deprecated(since = "0.2.0", note = "renamed to `DeviceDecoder`")]
+pub type CommandDecoder = DeviceDecoder;
+
+/// Renamed to [`HostDecoder`].
+#[deprecated(since = "0.2.0", note = "renamed to `HostDecoder`")]
+pub type Decoder = HostDecoder;
+
+/// Renamed to [`LenientHostDecoder`].
+#[deprecated(since = "0.2.0", note = "renamed to `LenientHostDecoder`")]
+pub type LenientReportDecoder = LenientHostDecoder;
+
+/// Renamed to [`Framing<Host>`](Framing).
+#[deprecated(since = "0.2.0", note = "renamed to `Framing<Host>`")]
+pub type ReportFraming = Framing<Host>;
+
+/// Renamed to [`Framing<Device>`](Framing).
+#[deprecated(since = "0.2.0", note = "renamed to `Framing<Device>`")]
+pub type CommandFraming = Framing<Device>;
+
+/// Renamed to [`CommandBuf`].
+#[deprecated(since = "0.2.0", note = "renamed to `CommandBuf`")]
+pub type OwnedCommand = CommandBuf;
+
+/// Renamed to [`ReportBuf`].
+#[deprecated(since = "0.2.0", note = "renamed to `ReportBuf`")]
+pub type OwnedReport = ReportBuf;
+
+/// Renamed to [`Command`].
+#[deprecated(since = "0.2.0", note = "renamed to `Command`")]
+pub type CommandRef<'a> = Command<'a>;
+
+/// Renamed to [`Report`].
+#[deprecated(since = "0.2.0", note = "renamed to `Report`")]
+pub type ReportRef<'a> = Report<'a>;
+
+/// Renamed to [`HOST_BUFFER`].
+#[deprecated(since = "0.2.0", note = "renamed to `HOST_BUFFER`")]
+pub const REPORT_BUFFER: usize = HOST_BUFFER;
+
+/// Renamed to [`DEVICE_BUFFER`].
+#[deprecated(since = "0.2.0", note = "renamed to `DEVICE_BUFFER`")]
+pub const COMMAND_BUFFER: usize = DEVICE_BUFFER;
+
+/// Parse one complete report frame: now [`Report::parse_in`].
+#[deprecated(since = "0.2.0", note = "use `Report::parse_in(frame, dialect)`")]
+pub fn parse_report(dialect: Dialect, frame: &[u8]) -> Result<Report<'_>, Error> {
+    Report::parse_in(frame, dialect)
+}
+
+/// Parse one complete command frame: now [`Command::parse_in`].
+#[deprecated(since = "0.2.0", note = "use `Command::parse_in(frame, dialect)`")]
+pub fn parse_command(dialect: Dialect, frame: &[u8]) -> Result<Command<'_>, Error> {
+    Command::parse_in(frame, dialect)
 }
 
 /// A message paired with the dialect to encode it for, so that
@@ -146,7 +310,7 @@ pub struct InDialect<'m, M> {
     dialect: Dialect,
 }
 
-impl<B: AsRef<[u8]>> Command<B> {
+impl<'a> Command<'a> {
     /// This command, to be encoded for `dialect`.
     pub const fn in_dialect(&self, dialect: Dialect) -> InDialect<'_, Self> {
         InDialect {
@@ -156,7 +320,7 @@ impl<B: AsRef<[u8]>> Command<B> {
     }
 }
 
-impl<B: AsRef<[u8]>> Report<B> {
+impl<'a> Report<'a> {
     /// This report, to be encoded for `dialect`.
     pub const fn in_dialect(&self, dialect: Dialect) -> InDialect<'_, Self> {
         InDialect {
@@ -166,8 +330,8 @@ impl<B: AsRef<[u8]>> Report<B> {
     }
 }
 
-impl<B: AsRef<[u8]>> Encode for InDialect<'_, Command<B>> {
-    const MAX_LEN: usize = MAX_COMMAND_LEN + 1;
+impl Encode for InDialect<'_, Command<'_>> {
+    const MAX_LEN: usize = wire::MAX_COMMAND_FRAME;
 
     fn encoded_len(&self) -> usize {
         self.message.encoded_len_in(self.dialect)
@@ -178,8 +342,8 @@ impl<B: AsRef<[u8]>> Encode for InDialect<'_, Command<B>> {
     }
 }
 
-impl<B: AsRef<[u8]>> Encode for InDialect<'_, Report<B>> {
-    const MAX_LEN: usize = report::MAX_REPORT_FRAME;
+impl Encode for InDialect<'_, Report<'_>> {
+    const MAX_LEN: usize = wire::MAX_REPORT_FRAME;
 
     fn encoded_len(&self) -> usize {
         self.message.encoded_len_in(self.dialect)

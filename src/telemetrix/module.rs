@@ -7,17 +7,15 @@
 //! module's `parse` ([`ModuleCommand`]). Reports (34) do carry the module type
 //! and are decoded to [`ModuleReport`].
 
-use super::command::{command_id, Command, OwnedCommand, COMMAND_PAYLOAD_MAX};
 use super::error::{ensure, Error};
 use super::list::{List, Payload};
-use super::wire::{Reader, Writer};
+use super::wire::{command_id, Reader, Writer, COMMAND_PAYLOAD_MAX};
 use crate::EncodeError;
 
 /// Most bytes of a MODULE_NEW init (LEN 30 less `id, 01, num, type`).
 pub const MODULE_INIT_MAX: usize = 26;
 
 /// Module types (spec §7).
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ModuleType {
@@ -50,7 +48,6 @@ impl ModuleType {
 }
 
 /// PCA9685 address and frequency (applied only when both are sent).
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Pca9685Config {
@@ -61,10 +58,9 @@ pub struct Pca9685Config {
 }
 
 /// A module's MODULE_NEW init bytes, by type.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ModuleInit<B> {
+pub enum ModuleInit<'a> {
     /// `port [, addr, u16 freq_hz]`.
     Pca9685 {
         /// I2C port 0 or 1.
@@ -81,7 +77,7 @@ pub enum ModuleInit<B> {
         /// TX GPIO (< 30).
         tx: u8,
         /// Bus ids of the servos, at most 22; later messages use their index.
-        bus_ids: B,
+        bus_ids: &'a [u8],
     },
     /// `pin, active_level, wait_s`.
     ShutdownRelay {
@@ -101,11 +97,22 @@ pub enum ModuleInit<B> {
     },
 }
 
+impl ModuleInit<'_> {
+    /// The module type this init is for.
+    pub const fn module_type(&self) -> ModuleType {
+        match self {
+            ModuleInit::Pca9685 { .. } => ModuleType::Pca9685,
+            ModuleInit::HiwonderServo { .. } => ModuleType::HiwonderServo,
+            ModuleInit::ShutdownRelay { .. } => ModuleType::ShutdownRelay,
+            ModuleInit::Ssd1306 { .. } => ModuleType::Ssd1306,
+        }
+    }
+}
+
 /// MODULE_NEW (command 33).
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ModuleNew<B> {
+pub enum ModuleNew<'a> {
     /// `00, type`: ask whether a type is supported (answered by report 33).
     Check {
         /// Any type value; unknown ones are answered "not supported".
@@ -116,94 +123,18 @@ pub enum ModuleNew<B> {
         /// Module number: number modules 0, 1, 2, … in creation order.
         module_num: u8,
         /// Type and init bytes.
-        init: ModuleInit<B>,
+        init: ModuleInit<'a>,
     },
 }
 
-impl<B> ModuleNew<B> {
-    pub(crate) fn map_bytes<C>(self, f: impl FnOnce(B) -> C) -> ModuleNew<C> {
-        match self {
-            ModuleNew::Check { module_type } => ModuleNew::Check { module_type },
-            ModuleNew::Add { module_num, init } => ModuleNew::Add {
-                module_num,
-                init: match init {
-                    ModuleInit::Pca9685 { port, config } => ModuleInit::Pca9685 { port, config },
-                    ModuleInit::HiwonderServo {
-                        uart,
-                        rx,
-                        tx,
-                        bus_ids,
-                    } => ModuleInit::HiwonderServo {
-                        uart,
-                        rx,
-                        tx,
-                        bus_ids: f(bus_ids),
-                    },
-                    ModuleInit::ShutdownRelay {
-                        pin,
-                        active_high,
-                        wait_s,
-                    } => ModuleInit::ShutdownRelay {
-                        pin,
-                        active_high,
-                        wait_s,
-                    },
-                    ModuleInit::Ssd1306 { port, addr } => ModuleInit::Ssd1306 { port, addr },
-                },
-            },
-        }
-    }
-}
-
-impl<B: AsRef<[u8]>> ModuleNew<B> {
-    pub(crate) fn as_ref(&self) -> ModuleNew<&[u8]> {
-        match self {
-            ModuleNew::Check { module_type } => ModuleNew::Check {
-                module_type: *module_type,
-            },
-            ModuleNew::Add { module_num, init } => ModuleNew::Add {
-                module_num: *module_num,
-                init: match init {
-                    ModuleInit::Pca9685 { port, config } => ModuleInit::Pca9685 {
-                        port: *port,
-                        config: *config,
-                    },
-                    ModuleInit::HiwonderServo {
-                        uart,
-                        rx,
-                        tx,
-                        bus_ids,
-                    } => ModuleInit::HiwonderServo {
-                        uart: *uart,
-                        rx: *rx,
-                        tx: *tx,
-                        bus_ids: bus_ids.as_ref(),
-                    },
-                    ModuleInit::ShutdownRelay {
-                        pin,
-                        active_high,
-                        wait_s,
-                    } => ModuleInit::ShutdownRelay {
-                        pin: *pin,
-                        active_high: *active_high,
-                        wait_s: *wait_s,
-                    },
-                    ModuleInit::Ssd1306 { port, addr } => ModuleInit::Ssd1306 {
-                        port: *port,
-                        addr: *addr,
-                    },
-                },
-            },
-        }
-    }
-
+impl ModuleNew<'_> {
     /// Length of the init bytes (0 for a check).
     pub(crate) fn init_len(&self) -> usize {
         match self {
             ModuleNew::Check { .. } => 0,
             ModuleNew::Add { init, .. } => match init {
                 ModuleInit::Pca9685 { config, .. } => 1 + 3 * usize::from(config.is_some()),
-                ModuleInit::HiwonderServo { bus_ids, .. } => 4 + bus_ids.as_ref().len(),
+                ModuleInit::HiwonderServo { bus_ids, .. } => 4 + bus_ids.len(),
                 ModuleInit::ShutdownRelay { .. } => 3,
                 ModuleInit::Ssd1306 { addr, .. } => 1 + usize::from(addr.is_some()),
             },
@@ -214,13 +145,7 @@ impl<B: AsRef<[u8]>> ModuleNew<B> {
         match self {
             ModuleNew::Check { module_type } => w.bytes(&[0, *module_type]),
             ModuleNew::Add { module_num, init } => {
-                let module_type = match init {
-                    ModuleInit::Pca9685 { .. } => ModuleType::Pca9685,
-                    ModuleInit::HiwonderServo { .. } => ModuleType::HiwonderServo,
-                    ModuleInit::ShutdownRelay { .. } => ModuleType::ShutdownRelay,
-                    ModuleInit::Ssd1306 { .. } => ModuleType::Ssd1306,
-                };
-                w.bytes(&[1, *module_num, module_type.as_u8()]);
+                w.bytes(&[1, *module_num, init.module_type().as_u8()]);
                 match init {
                     ModuleInit::Pca9685 { port, config } => {
                         w.u8(*port);
@@ -235,9 +160,8 @@ impl<B: AsRef<[u8]>> ModuleNew<B> {
                         tx,
                         bus_ids,
                     } => {
-                        let ids = bus_ids.as_ref();
-                        w.bytes(&[*uart, *rx, *tx, ids.len() as u8]);
-                        w.bytes(ids);
+                        w.bytes(&[*uart, *rx, *tx, bus_ids.len() as u8]);
+                        w.bytes(bus_ids);
                     }
                     ModuleInit::ShutdownRelay {
                         pin,
@@ -260,7 +184,7 @@ impl<B: AsRef<[u8]>> ModuleNew<B> {
     }
 }
 
-impl<'a> ModuleNew<&'a [u8]> {
+impl<'a> ModuleNew<'a> {
     pub(crate) fn parse(r: &mut Reader<'a>) -> Result<Self, Error> {
         let id = r.id();
         match r.u8()? {
@@ -344,19 +268,6 @@ pub trait ModuleCommand: Sized {
     fn parse(data: &[u8]) -> Result<Self, Error>;
 }
 
-impl<B> Command<B> {
-    /// A MODULE_DATA command carrying `message` for module `module_num`.
-    pub fn module_data<M: ModuleCommand>(
-        module_num: u8,
-        message: &M,
-    ) -> Result<OwnedCommand, EncodeError> {
-        Ok(Command::ModuleData {
-            module_num,
-            data: message.to_data()?,
-        })
-    }
-}
-
 /// Write `message`'s data with `write`, then check it with `M::parse`.
 fn data_of<M: ModuleCommand>(
     write: impl FnOnce(&mut Writer<'_>),
@@ -384,7 +295,6 @@ fn data_reader(data: &[u8]) -> Reader<'_> {
 }
 
 /// Where a Hiwonder servo should move.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct ServoMove {
@@ -399,7 +309,6 @@ pub struct ServoMove {
 /// Hiwonder servo data (module type 1), spec §7.1. Servos are addressed by
 /// their index in the init list. The firmware drops all of it unless the last
 /// PING is less than 2 s old.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum HiwonderCommand {
@@ -593,7 +502,6 @@ impl ModuleCommand for HiwonderCommand {
 }
 
 /// One PCA9685 channel setting.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Pca9685Channel {
@@ -607,7 +515,6 @@ pub struct Pca9685Channel {
 
 /// PCA9685 data (module type 0), spec §7.2: 1..=5 channel settings,
 /// big-endian.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Pca9685Command {
@@ -646,7 +553,6 @@ impl ModuleCommand for Pca9685Command {
 }
 
 /// SSD1306 data (module type 3), spec §7.3.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Ssd1306Command {
@@ -716,7 +622,6 @@ impl ModuleCommand for Ssd1306Command {
 }
 
 /// Shutdown relay data (module type 2), spec §7.4.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum RelayCommand {
@@ -746,7 +651,6 @@ impl ModuleCommand for RelayCommand {
 }
 
 /// A Hiwonder servo position in a positions report.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct ServoPosition {
@@ -757,68 +661,45 @@ pub struct ServoPosition {
 }
 
 /// The positions of a Hiwonder positions report: `k × {idx, u16 centideg}`,
-/// k ≥ 1, kept as the raw bytes `B`.
-///
-/// With the `serde` feature it serializes as the raw bytes alone; like
-/// [`from_raw`](Self::from_raw), deserializing leaves them to be checked when
-/// encoded.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+/// k ≥ 1, kept as the raw bytes of the frame.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "serde", serde(transparent))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct ServoPositions<B> {
-    raw: B,
+pub struct ServoPositions<'a> {
+    raw: &'a [u8],
 }
 
-impl<B: AsRef<[u8]>> ServoPositions<B> {
-    /// Wrap raw bytes (3 per servo). They are checked when encoded.
-    pub const fn from_raw(raw: B) -> Self {
+impl<'a> ServoPositions<'a> {
+    /// Wrap raw bytes (3 per servo: `idx, u16 centideg`). They are checked
+    /// when encoded.
+    pub const fn from_raw(raw: &'a [u8]) -> Self {
         Self { raw }
     }
 
     /// The raw bytes.
-    pub fn raw(&self) -> &B {
-        &self.raw
+    pub const fn raw(&self) -> &'a [u8] {
+        self.raw
     }
 
     /// Number of positions.
-    pub fn len(&self) -> usize {
-        self.raw.as_ref().len() / 3
+    pub const fn len(&self) -> usize {
+        self.raw.len() / 3
     }
 
     /// Whether there are none (never, in a valid report).
-    pub fn is_empty(&self) -> bool {
+    pub const fn is_empty(&self) -> bool {
         self.len() == 0
     }
 
     /// The positions.
-    pub fn iter(&self) -> impl Iterator<Item = ServoPosition> + '_ {
-        self.raw.as_ref().chunks_exact(3).map(|c| ServoPosition {
+    pub fn iter(&self) -> impl Iterator<Item = ServoPosition> + 'a {
+        self.raw.chunks_exact(3).map(|c| ServoPosition {
             idx: c[0],
             centideg: u16::from_be_bytes([c[1], c[2]]),
         })
     }
 }
 
-impl<const N: usize> ServoPositions<Payload<N>> {
-    /// Owned positions from a list.
-    pub fn from_positions(positions: &[ServoPosition]) -> Result<Self, EncodeError> {
-        let mut raw = Payload::new();
-        for p in positions {
-            let [hi, lo] = p.centideg.to_be_bytes();
-            for b in [p.idx, hi, lo] {
-                raw.push(b).map_err(|_| EncodeError::TooLong {
-                    len: positions.len(),
-                    max: N / 3,
-                })?;
-            }
-        }
-        Ok(Self { raw })
-    }
-}
-
 /// Completion kind of an SSD1306 report.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Ssd1306Done {
@@ -829,13 +710,12 @@ pub enum Ssd1306Done {
 }
 
 /// The data of a MODULE_REPORT (report 34), by module type and subtype.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ModuleReport<B> {
+pub enum ModuleReport<'a> {
     /// Hiwonder subtype 0: positions of changed servos (and each at least once
     /// a second).
-    HiwonderPositions(ServoPositions<B>),
+    HiwonderPositions(ServoPositions<'a>),
     /// Hiwonder subtype 4: ID_VERIFY reply.
     HiwonderIdVerify {
         /// The bus id asked about.
@@ -884,7 +764,7 @@ pub enum ModuleReport<B> {
     },
 }
 
-impl<B> ModuleReport<B> {
+impl ModuleReport<'_> {
     /// The module type that sends this report.
     pub const fn module_type(&self) -> ModuleType {
         match self {
@@ -895,97 +775,13 @@ impl<B> ModuleReport<B> {
         }
     }
 
-    pub(crate) fn map_bytes<C>(self, f: impl FnOnce(B) -> C) -> ModuleReport<C> {
-        match self {
-            ModuleReport::HiwonderPositions(p) => {
-                ModuleReport::HiwonderPositions(ServoPositions { raw: f(p.raw) })
-            }
-            ModuleReport::HiwonderIdVerify { bus_id, ok } => {
-                ModuleReport::HiwonderIdVerify { bus_id, ok }
-            }
-            ModuleReport::HiwonderRange {
-                idx,
-                min_cdeg,
-                max_cdeg,
-            } => ModuleReport::HiwonderRange {
-                idx,
-                min_cdeg,
-                max_cdeg,
-            },
-            ModuleReport::HiwonderOffset { idx, offset_cdeg } => {
-                ModuleReport::HiwonderOffset { idx, offset_cdeg }
-            }
-            ModuleReport::HiwonderAdded { bus_id, idx } => {
-                ModuleReport::HiwonderAdded { bus_id, idx }
-            }
-            ModuleReport::Ssd1306Done {
-                kind,
-                len,
-                display_x,
-                enabled,
-            } => ModuleReport::Ssd1306Done {
-                kind,
-                len,
-                display_x,
-                enabled,
-            },
-            ModuleReport::Ssd1306Disabled { request_sub } => {
-                ModuleReport::Ssd1306Disabled { request_sub }
-            }
-        }
-    }
-}
-
-impl<B: AsRef<[u8]>> ModuleReport<B> {
-    pub(crate) fn as_ref(&self) -> ModuleReport<&[u8]> {
-        match *self {
-            ModuleReport::HiwonderPositions(ref p) => {
-                ModuleReport::HiwonderPositions(ServoPositions {
-                    raw: p.raw.as_ref(),
-                })
-            }
-            ModuleReport::HiwonderIdVerify { bus_id, ok } => {
-                ModuleReport::HiwonderIdVerify { bus_id, ok }
-            }
-            ModuleReport::HiwonderRange {
-                idx,
-                min_cdeg,
-                max_cdeg,
-            } => ModuleReport::HiwonderRange {
-                idx,
-                min_cdeg,
-                max_cdeg,
-            },
-            ModuleReport::HiwonderOffset { idx, offset_cdeg } => {
-                ModuleReport::HiwonderOffset { idx, offset_cdeg }
-            }
-            ModuleReport::HiwonderAdded { bus_id, idx } => {
-                ModuleReport::HiwonderAdded { bus_id, idx }
-            }
-            ModuleReport::Ssd1306Done {
-                kind,
-                len,
-                display_x,
-                enabled,
-            } => ModuleReport::Ssd1306Done {
-                kind,
-                len,
-                display_x,
-                enabled,
-            },
-            ModuleReport::Ssd1306Disabled { request_sub } => {
-                ModuleReport::Ssd1306Disabled { request_sub }
-            }
-        }
-    }
-
     /// Write `type, subtype/data` (after the module number).
     pub(crate) fn write(&self, w: &mut Writer<'_>) {
         w.u8(self.module_type().as_u8());
         match self {
             ModuleReport::HiwonderPositions(p) => {
                 w.u8(0);
-                w.bytes(p.raw.as_ref());
+                w.bytes(p.raw);
             }
             ModuleReport::HiwonderIdVerify { bus_id, ok } => {
                 w.bytes(&[4, *bus_id]);
@@ -1023,7 +819,7 @@ impl<B: AsRef<[u8]>> ModuleReport<B> {
     }
 }
 
-impl<'a> ModuleReport<&'a [u8]> {
+impl<'a> ModuleReport<'a> {
     /// Parse `type, …` after the module number.
     pub(crate) fn parse(r: &mut Reader<'a>) -> Result<Self, Error> {
         let id = r.id();

@@ -1,61 +1,12 @@
 //! Reports (Pico → host), spec §5.
 
-use super::analog_pin_ok;
-use super::command::split_frame;
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
-use super::list::Payload;
 use super::module::{module_report_len_ok, ModuleReport};
 use super::sensor::{SensorReading, SensorType};
-use super::wire::{Reader, Writer};
+use super::wire::{analog_pin_ok, report_id, split_frame, Reader, Writer, MAX_REPORT_FRAME};
 use crate::encode::check_room;
 use crate::{Encode, EncodeError};
-
-/// Report ids (Pico → host), mirte firmware 1.3 numbering (spec §5).
-pub mod report_id {
-    /// SERIAL_LOOP_BACK_REPORT.
-    pub const SERIAL_LOOP_BACK: u8 = 0;
-    /// DIGITAL_REPORT.
-    pub const DIGITAL: u8 = 2;
-    /// ANALOG_REPORT.
-    pub const ANALOG: u8 = 3;
-    /// FIRMWARE_REPORT.
-    pub const FIRMWARE: u8 = 5;
-    /// REPORT_PICO_UNIQUE_ID.
-    pub const UNIQUE_ID: u8 = 6;
-    /// I2C_WRITE_REPORT (upstream: I2C_WRITE_FAILED).
-    pub const I2C_WRITE: u8 = 8;
-    /// I2C_READ_FAILED.
-    pub const I2C_READ_FAILED: u8 = 9;
-    /// I2C_READ_REPORT.
-    pub const I2C_READ: u8 = 10;
-    /// SONAR_DISTANCE.
-    pub const SONAR: u8 = 11;
-    /// DHT_REPORT.
-    pub const DHT: u8 = 12;
-    /// SPI_REPORT.
-    pub const SPI: u8 = 13;
-    /// ENCODER_REPORT.
-    pub const ENCODER: u8 = 14;
-    /// SENSOR_REPORT.
-    pub const SENSOR: u8 = 20;
-    /// SENSOR_MAIN_REPORT.
-    pub const SENSOR_MAIN: u8 = 21;
-    /// PONG_REPORT.
-    pub const PONG: u8 = 32;
-    /// MODULE_MAIN_REPORT.
-    pub const MODULE_MAIN: u8 = 33;
-    /// MODULE_REPORT.
-    pub const MODULE: u8 = 34;
-    /// GET_ID_REPORT.
-    pub const GET_ID: u8 = 35;
-    /// SET_ID_REPORT.
-    pub const SET_ID: u8 = 36;
-    /// FEATURE_CHECK.
-    pub const FEATURE_CHECK: u8 = 37;
-    /// DEBUG_PRINT.
-    pub const DEBUG_PRINT: u8 = 99;
-}
 
 use report_id as id;
 
@@ -182,7 +133,6 @@ const fn feature_extras(msg_type: u8) -> Extras {
 }
 
 /// What a sonar reading means.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SonarReading {
@@ -207,7 +157,6 @@ pub const SONAR_OUT_OF_RANGE: u16 = 0xFFFD;
 pub const SONAR_STALE: u16 = 0xFFFE;
 
 /// SONAR_DISTANCE (report 11), in the form the dialect and `LEN` select.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Sonar {
@@ -303,19 +252,19 @@ impl Sonar {
     }
 }
 
-/// A report, Pico → host. `B` holds the variable byte fields: `&[u8]` when
-/// parsed from a frame (see [`ReportRef`]) or for encoding borrowed data,
-/// [`Payload`] in the owned form ([`OwnedReport`]).
+/// A report, Pico → host. Variable byte fields (I2C and SPI data, feature
+/// extras, Hiwonder positions, an unknown report's payload) borrow from the
+/// frame they were parsed from or from the caller;
+/// [`ReportBuf`](super::ReportBuf) is the owned form.
 ///
-/// With the `serde` feature a [`ReportRef`] and its [`OwnedReport`] serialize
-/// alike (byte fields as sequences of numbers). Deserialize an
-/// [`OwnedReport`]; a [`ReportRef`] deserializes only from formats that hand
-/// out borrowed bytes (postcard, bincode; not JSON). Sensor floats are
-/// written as numbers, so JSON loses NaN and infinities (written as `null`).
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+/// With the `serde` feature it serializes in the JSON-lines schema of the
+/// `robowire` tool (`{"type":"pong","counter":7,"boot_id":42}`); deserialize
+/// a [`ReportBuf`](super::ReportBuf), which owns its bytes. Sensor floats
+/// that JSON cannot carry are written as `"inf"`, `"-inf"` and
+/// `"nan:0x…"`.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Report<B> {
+pub enum Report<'a> {
     /// 0: loopback echo.
     LoopBack {
         /// The echoed byte.
@@ -325,8 +274,8 @@ pub enum Report<B> {
     Digital {
         /// GPIO (< 30).
         pin: u8,
-        /// Level.
-        high: bool,
+        /// Level (`true` is high).
+        value: bool,
     },
     /// 3: an analog input changed.
     Analog {
@@ -384,7 +333,7 @@ pub enum Report<B> {
         /// Register.
         reg: u8,
         /// 1..=57 bytes.
-        data: B,
+        data: &'a [u8],
     },
     /// 10 (upstream): I2C read data, `port, addr, reg, n, data`.
     I2cReadUpstream {
@@ -395,7 +344,7 @@ pub enum Report<B> {
         /// Register.
         reg: u8,
         /// 1..=57 bytes.
-        data: B,
+        data: &'a [u8],
     },
     /// 11: sonar distance.
     Sonar(Sonar),
@@ -418,7 +367,7 @@ pub enum Report<B> {
         /// Port.
         port: u8,
         /// 0..=60 bytes.
-        data: B,
+        data: &'a [u8],
     },
     /// 14 (mirte): encoder steps since the last report (never 0).
     Encoder {
@@ -460,7 +409,7 @@ pub enum Report<B> {
         /// The module's number.
         module_num: u8,
         /// Type, subtype and data.
-        report: ModuleReport<B>,
+        report: ModuleReport<'a>,
     },
     /// 35 (mirte 1.3): the saved id (`FF` if never set).
     Id {
@@ -480,7 +429,7 @@ pub enum Report<B> {
         supported: bool,
         /// Extras (spec §5): for 1 `30 12 14 count pins…`, for 5 `1 3`, for
         /// 7 `12`, for 10 `2`, for 13 `4`, for 30 `4 2 1`; none otherwise.
-        extras: B,
+        extras: &'a [u8],
     },
     /// 99 (mirte): debug print.
     Debug {
@@ -490,25 +439,16 @@ pub enum Report<B> {
         value: u16,
     },
     /// A report id the dialect does not define: decoded only by a lenient
-    /// [`ReportFraming`](super::ReportFraming).
+    /// [`Framing`](super::Framing) with [`lenient`](super::Framing::lenient).
     Unknown {
         /// The id.
         id: u8,
         /// The payload.
-        payload: B,
+        payload: &'a [u8],
     },
 }
 
-/// A report borrowing its variable fields from a frame or the caller.
-pub type ReportRef<'a> = Report<&'a [u8]>;
-
-/// Capacity of [`OwnedReport`]'s byte fields: the largest payload after the id.
-pub const REPORT_PAYLOAD_MAX: usize = 254;
-
-/// A report owning its variable fields.
-pub type OwnedReport = Report<Payload<REPORT_PAYLOAD_MAX>>;
-
-impl<B> Report<B> {
+impl Report<'_> {
     /// The report id.
     pub const fn id(&self) -> u8 {
         match self {
@@ -536,187 +476,9 @@ impl<B> Report<B> {
             Report::Unknown { id, .. } => *id,
         }
     }
-
-    /// The same report with its byte fields converted by `f`.
-    pub fn map_bytes<C>(self, mut f: impl FnMut(B) -> C) -> Report<C> {
-        match self {
-            Report::I2cRead {
-                port,
-                msg_id,
-                reg,
-                data,
-            } => Report::I2cRead {
-                port,
-                msg_id,
-                reg,
-                data: f(data),
-            },
-            Report::I2cReadUpstream {
-                port,
-                addr,
-                reg,
-                data,
-            } => Report::I2cReadUpstream {
-                port,
-                addr,
-                reg,
-                data: f(data),
-            },
-            Report::Spi { port, data } => Report::Spi {
-                port,
-                data: f(data),
-            },
-            Report::Module { module_num, report } => Report::Module {
-                module_num,
-                report: report.map_bytes(f),
-            },
-            Report::Feature {
-                msg_type,
-                supported,
-                extras,
-            } => Report::Feature {
-                msg_type,
-                supported,
-                extras: f(extras),
-            },
-            Report::Unknown { id, payload } => Report::Unknown {
-                id,
-                payload: f(payload),
-            },
-            // Every other variant has no byte field: `plain` copies it.
-            other => other.plain().unwrap_or(Report::LoopBack { byte: 0 }),
-        }
-    }
-
-    /// A copy of a variant without byte fields (`None` for the others).
-    fn plain<C>(&self) -> Option<Report<C>> {
-        Some(match *self {
-            Report::LoopBack { byte } => Report::LoopBack { byte },
-            Report::Digital { pin, high } => Report::Digital { pin, high },
-            Report::Analog { pin, value } => Report::Analog { pin, value },
-            Report::FirmwareVersion { major, minor } => Report::FirmwareVersion { major, minor },
-            Report::UniqueId { id } => Report::UniqueId { id },
-            Report::I2cWrite {
-                port,
-                msg_id,
-                result,
-            } => Report::I2cWrite {
-                port,
-                msg_id,
-                result,
-            },
-            Report::I2cWriteFailed { port, addr, stale } => {
-                Report::I2cWriteFailed { port, addr, stale }
-            }
-            Report::I2cReadFailed { port, addr, stale } => {
-                Report::I2cReadFailed { port, addr, stale }
-            }
-            Report::Sonar(s) => Report::Sonar(s),
-            Report::Dht {
-                pin,
-                humidity,
-                humidity_hundredths,
-                temp,
-                temp_hundredths,
-            } => Report::Dht {
-                pin,
-                humidity,
-                humidity_hundredths,
-                temp,
-                temp_hundredths,
-            },
-            Report::Encoder { pin, steps } => Report::Encoder { pin, steps },
-            Report::Sensor {
-                sensor_num,
-                reading,
-            } => Report::Sensor {
-                sensor_num,
-                reading,
-            },
-            Report::SensorSupported {
-                sensor_type,
-                supported,
-            } => Report::SensorSupported {
-                sensor_type,
-                supported,
-            },
-            Report::Pong { counter, boot_id } => Report::Pong { counter, boot_id },
-            Report::ModuleSupported {
-                module_type,
-                supported,
-            } => Report::ModuleSupported {
-                module_type,
-                supported,
-            },
-            Report::Id { id } => Report::Id { id },
-            Report::IdSet { id } => Report::IdSet { id },
-            Report::Debug { id, value } => Report::Debug { id, value },
-            Report::I2cRead { .. }
-            | Report::I2cReadUpstream { .. }
-            | Report::Spi { .. }
-            | Report::Module { .. }
-            | Report::Feature { .. }
-            | Report::Unknown { .. } => return None,
-        })
-    }
 }
 
-impl<B: AsRef<[u8]>> Report<B> {
-    /// A borrowed view of this report.
-    pub fn as_ref(&self) -> ReportRef<'_> {
-        match self {
-            Report::I2cRead {
-                port,
-                msg_id,
-                reg,
-                data,
-            } => Report::I2cRead {
-                port: *port,
-                msg_id: *msg_id,
-                reg: *reg,
-                data: data.as_ref(),
-            },
-            Report::I2cReadUpstream {
-                port,
-                addr,
-                reg,
-                data,
-            } => Report::I2cReadUpstream {
-                port: *port,
-                addr: *addr,
-                reg: *reg,
-                data: data.as_ref(),
-            },
-            Report::Spi { port, data } => Report::Spi {
-                port: *port,
-                data: data.as_ref(),
-            },
-            Report::Module { module_num, report } => Report::Module {
-                module_num: *module_num,
-                report: report.as_ref(),
-            },
-            Report::Feature {
-                msg_type,
-                supported,
-                extras,
-            } => Report::Feature {
-                msg_type: *msg_type,
-                supported: *supported,
-                extras: extras.as_ref(),
-            },
-            Report::Unknown { id, payload } => Report::Unknown {
-                id: *id,
-                payload: payload.as_ref(),
-            },
-            other => other.plain().unwrap_or(Report::LoopBack { byte: 0 }),
-        }
-    }
-
-    /// An owned copy (byte fields copied into [`Payload`]s).
-    pub fn to_owned(&self) -> OwnedReport {
-        self.as_ref().map_bytes(Payload::truncating)
-    }
-
+impl Report<'_> {
     /// Frame length of this report in `dialect`.
     pub fn encoded_len_in(&self, dialect: Dialect) -> usize {
         let mut w = Writer::new(&mut []);
@@ -766,6 +528,33 @@ impl<B: AsRef<[u8]>> Report<B> {
         }
     }
 
+    /// Write the frame into `out` without checking it; returns its length
+    /// (which may exceed `out`, whose bytes past the end are then not
+    /// written). The bytes do not depend on the dialect.
+    pub(crate) fn write_unchecked(&self, out: &mut [u8]) -> usize {
+        let mut w = Writer::new(out);
+        self.write(&mut w, Dialect::Mirte13);
+        w.len()
+    }
+
+    /// The dialects whose layout this variant has, most recent first: a
+    /// frame this report encodes to parses back to it in each of them where
+    /// it is valid (an unknown report: where its id is unknown).
+    pub(crate) const fn home_dialects(&self) -> &'static [Dialect] {
+        match self {
+            Report::I2cWrite { .. } | Report::I2cRead { .. } | Report::I2cReadFailed { .. } => {
+                &[Dialect::Mirte13, Dialect::Mirte12]
+            }
+            Report::I2cWriteFailed { .. } | Report::I2cReadUpstream { .. } => {
+                &[Dialect::Upstream11]
+            }
+            Report::Sonar(Sonar::WithEcho { .. } | Sonar::TrigOnly { .. }) => &[Dialect::Mirte13],
+            Report::Sonar(Sonar::MetresCm { .. }) => &[Dialect::Mirte12],
+            Report::Sonar(Sonar::CmHundredths { .. }) => &[Dialect::Upstream11],
+            _ => &Dialect::ALL,
+        }
+    }
+
     fn write(&self, w: &mut Writer<'_>, dialect: Dialect) {
         w.u8(0);
         w.u8(self.id());
@@ -776,9 +565,9 @@ impl<B: AsRef<[u8]>> Report<B> {
     fn write_payload(&self, w: &mut Writer<'_>, _dialect: Dialect) {
         match self {
             Report::LoopBack { byte } => w.u8(*byte),
-            Report::Digital { pin, high } => {
+            Report::Digital { pin, value } => {
                 w.u8(*pin);
-                w.flag(*high);
+                w.flag(*value);
             }
             Report::Analog { pin, value } => {
                 w.u8(*pin);
@@ -802,7 +591,6 @@ impl<B: AsRef<[u8]>> Report<B> {
                 reg,
                 data,
             } => {
-                let data = data.as_ref();
                 w.bytes(&[*port, *msg_id, *reg, data.len() as u8, 0]);
                 w.bytes(data);
             }
@@ -812,7 +600,6 @@ impl<B: AsRef<[u8]>> Report<B> {
                 reg,
                 data,
             } => {
-                let data = data.as_ref();
                 w.bytes(&[*port, *addr, *reg, data.len() as u8]);
                 w.bytes(data);
             }
@@ -844,7 +631,6 @@ impl<B: AsRef<[u8]>> Report<B> {
                 w.i8(*temp_hundredths);
             }
             Report::Spi { port, data } => {
-                let data = data.as_ref();
                 w.bytes(&[*port, data.len() as u8]);
                 w.bytes(data);
             }
@@ -886,21 +672,18 @@ impl<B: AsRef<[u8]>> Report<B> {
             } => {
                 w.u8(*msg_type);
                 w.flag(*supported);
-                w.bytes(extras.as_ref());
+                w.bytes(extras);
             }
             Report::Debug { id, value } => {
                 w.u8(*id);
                 w.u16(*value);
             }
-            Report::Unknown { payload, .. } => w.bytes(payload.as_ref()),
+            Report::Unknown { payload, .. } => w.bytes(payload),
         }
     }
 }
 
-/// The longest report frame: `LEN` 255 and the `LEN` byte.
-pub(crate) const MAX_REPORT_FRAME: usize = 256;
-
-impl<B: AsRef<[u8]>> Encode for Report<B> {
+impl Encode for Report<'_> {
     const MAX_LEN: usize = MAX_REPORT_FRAME;
 
     /// The frame length in the default dialect (mirte 1.3).
@@ -915,20 +698,15 @@ impl<B: AsRef<[u8]>> Encode for Report<B> {
     }
 }
 
-/// Parse one complete report frame (`LEN` byte first) for `dialect`; unknown
-/// ids are errors. This is the one definition of a valid report: the decoder
-/// accepts exactly what it accepts, and the encoder emits nothing it rejects.
-pub fn parse_report(dialect: Dialect, frame: &[u8]) -> Result<ReportRef<'_>, Error> {
-    parse_report_with(dialect, false, frame)
-}
-
-/// [`parse_report`], with unknown ids accepted as [`Report::Unknown`] when
-/// `lenient`.
+/// Parse one complete report frame (`LEN` byte first) for `dialect`, with
+/// unknown ids accepted as [`Report::Unknown`] when `lenient`. This is the one
+/// definition of a valid report: the decoder accepts exactly what it accepts,
+/// and the encoder emits nothing it rejects.
 pub(crate) fn parse_report_with(
     dialect: Dialect,
     lenient: bool,
     frame: &[u8],
-) -> Result<ReportRef<'_>, Error> {
+) -> Result<Report<'_>, Error> {
     let (len, rid, payload) = split_frame(frame)?;
     if !report_known(dialect, rid) {
         return if lenient {
@@ -965,13 +743,13 @@ fn sonar_cm(r: &mut Reader<'_>) -> Result<u16, Error> {
     Ok(cm)
 }
 
-fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<ReportRef<'a>, Error> {
+fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Report<'a>, Error> {
     let rid = r.id();
     Ok(match rid {
         id::SERIAL_LOOP_BACK => Report::LoopBack { byte: r.u8()? },
         id::DIGITAL => Report::Digital {
             pin: r.pin("pin")?,
-            high: r.flag("value")?,
+            value: r.flag("value")?,
         },
         id::ANALOG => {
             let pin = r.u8()?;
@@ -1138,4 +916,39 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<ReportRef<'
         },
         _ => return Err(Error::UnknownId { id: rid }),
     })
+}
+
+impl<'a> Report<'a> {
+    /// Parse one complete report frame (`LEN` byte first, nothing after the
+    /// frame) of `dialect`; unknown ids are errors.
+    /// [`TryFrom<&[u8]>`](#impl-TryFrom%3C%26%5Bu8%5D%3E-for-Report%3C'a%3E)
+    /// parses mirte 1.3.
+    ///
+    /// ```
+    /// use robowire::telemetrix::{Dialect, Report, Sonar};
+    ///
+    /// let sonar = Report::parse_in(&[0x04, 0x0B, 0x09, 0x01, 0x14], Dialect::Mirte12)?;
+    /// assert_eq!(sonar, Report::Sonar(Sonar::MetresCm { trig: 9, m: 1, cm: 20 }));
+    /// # Ok::<(), robowire::telemetrix::Error>(())
+    /// ```
+    pub fn parse_in(frame: &'a [u8], dialect: Dialect) -> Result<Self, Error> {
+        parse_report_with(dialect, false, frame)
+    }
+
+    /// Like [`parse_in`](Self::parse_in), with ids the dialect does not
+    /// define read as [`Report::Unknown`] (what a
+    /// [`lenient`](super::Framing::lenient) framing accepts).
+    pub fn parse_lenient_in(frame: &'a [u8], dialect: Dialect) -> Result<Self, Error> {
+        parse_report_with(dialect, true, frame)
+    }
+}
+
+/// Parse one complete mirte 1.3 report frame (`LEN` byte first); see
+/// [`Report::parse_in`] for other dialects.
+impl<'a> TryFrom<&'a [u8]> for Report<'a> {
+    type Error = Error;
+
+    fn try_from(frame: &'a [u8]) -> Result<Self, Error> {
+        parse_report_with(Dialect::Mirte13, false, frame)
+    }
 }

@@ -6,7 +6,6 @@ use super::wire::{Reader, Writer};
 use crate::EncodeError;
 
 /// Sensor types (spec §6).
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SensorType {
@@ -83,7 +82,6 @@ impl SensorType {
 }
 
 /// SENSOR_NEW (command 31), mirte 1.3 layout.
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SensorNew {
@@ -166,7 +164,6 @@ impl SensorNew {
 
 /// The data of a SENSOR_REPORT (report 20), by sensor type. Integers are
 /// big-endian, floats little-endian (spec §3, §6).
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SensorReading {

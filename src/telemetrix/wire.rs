@@ -1,7 +1,176 @@
-//! Reading and writing fields: big-endian integers, little-endian floats
-//! (spec §3).
+//! The wire level, below every message module: ids, limits, splitting a frame,
+//! and reading and writing fields (big-endian integers, little-endian floats;
+//! spec §3). It uses only the leaf modules [`Error`] and [`Dialect`].
 
+use super::dialect::Dialect;
 use super::error::Error;
+
+/// GPIOs on the RP2040: pins are `0..30`.
+pub const PIN_COUNT: u8 = 30;
+
+/// The firmware's `MAX_COMMAND_LENGTH`: the largest `LEN` of a command.
+pub const MAX_COMMAND_LEN: usize = 30;
+
+/// The longest command frame: `LEN` 30 and the `LEN` byte.
+pub const MAX_COMMAND_FRAME: usize = MAX_COMMAND_LEN + 1;
+
+/// The longest report frame: `LEN` 255 and the `LEN` byte.
+pub const MAX_REPORT_FRAME: usize = 256;
+
+/// The longest frame of either direction (a report).
+pub const MAX_FRAME_LEN: usize = MAX_REPORT_FRAME;
+
+/// Most data bytes of a MODULE_DATA command (`LEN` 30 less `id, module_num`),
+/// the longest variable field of a command.
+pub const COMMAND_PAYLOAD_MAX: usize = 28;
+
+/// Whether `pin` names an analog input in `dialect`: GPIO 26..=30 (30 is the
+/// temperature sensor) in mirte 1.3, ADC 0..=4 before.
+pub(crate) const fn analog_pin_ok(dialect: Dialect, pin: u8) -> bool {
+    match dialect {
+        Dialect::Mirte13 => pin >= 26 && pin <= 30,
+        Dialect::Mirte12 | Dialect::Upstream11 => pin <= 4,
+    }
+}
+
+/// Command ids (host → Pico), mirte firmware 1.3 numbering (spec §4).
+pub mod command_id {
+    /// SERIAL_LOOP_BACK.
+    pub const SERIAL_LOOP_BACK: u8 = 0;
+    /// SET_PIN_MODE.
+    pub const SET_PIN_MODE: u8 = 1;
+    /// DIGITAL_WRITE.
+    pub const DIGITAL_WRITE: u8 = 2;
+    /// PWM_WRITE.
+    pub const PWM_WRITE: u8 = 3;
+    /// MODIFY_REPORTING.
+    pub const MODIFY_REPORTING: u8 = 4;
+    /// GET_FIRMWARE_VERSION.
+    pub const GET_FIRMWARE_VERSION: u8 = 5;
+    /// GET_PICO_UNIQUE_ID.
+    pub const GET_PICO_UNIQUE_ID: u8 = 6;
+    /// SERVO_ATTACH.
+    pub const SERVO_ATTACH: u8 = 7;
+    /// SERVO_WRITE.
+    pub const SERVO_WRITE: u8 = 8;
+    /// SERVO_DETACH.
+    pub const SERVO_DETACH: u8 = 9;
+    /// I2C_BEGIN.
+    pub const I2C_BEGIN: u8 = 10;
+    /// I2C_READ.
+    pub const I2C_READ: u8 = 11;
+    /// I2C_WRITE.
+    pub const I2C_WRITE: u8 = 12;
+    /// SONAR_NEW.
+    pub const SONAR_NEW: u8 = 13;
+    /// DHT_NEW.
+    pub const DHT_NEW: u8 = 14;
+    /// STOP_ALL_REPORTS.
+    pub const STOP_ALL_REPORTS: u8 = 15;
+    /// ENABLE_ALL_REPORTS.
+    pub const ENABLE_ALL_REPORTS: u8 = 16;
+    /// RESET_DATA.
+    pub const RESET_DATA: u8 = 17;
+    /// RESET_BOARD.
+    pub const RESET_BOARD: u8 = 18;
+    /// INITIALIZE_NEO_PIXELS.
+    pub const INITIALIZE_NEO_PIXELS: u8 = 19;
+    /// SHOW_NEO_PIXELS.
+    pub const SHOW_NEO_PIXELS: u8 = 20;
+    /// SET_NEO_PIXEL.
+    pub const SET_NEO_PIXEL: u8 = 21;
+    /// CLEAR_ALL_NEO_PIXELS.
+    pub const CLEAR_ALL_NEO_PIXELS: u8 = 22;
+    /// FILL_NEO_PIXELS.
+    pub const FILL_NEO_PIXELS: u8 = 23;
+    /// SPI_INIT.
+    pub const SPI_INIT: u8 = 24;
+    /// SPI_WRITE_BLOCKING.
+    pub const SPI_WRITE_BLOCKING: u8 = 25;
+    /// SPI_READ_BLOCKING.
+    pub const SPI_READ_BLOCKING: u8 = 26;
+    /// SPI_SET_FORMAT.
+    pub const SPI_SET_FORMAT: u8 = 27;
+    /// SPI_CS_CONTROL.
+    pub const SPI_CS_CONTROL: u8 = 28;
+    /// SET_SCAN_DELAY.
+    pub const SET_SCAN_DELAY: u8 = 29;
+    /// ENCODER_NEW.
+    pub const ENCODER_NEW: u8 = 30;
+    /// SENSOR_NEW.
+    pub const SENSOR_NEW: u8 = 31;
+    /// PING.
+    pub const PING: u8 = 32;
+    /// MODULE_NEW.
+    pub const MODULE_NEW: u8 = 33;
+    /// MODULE_DATA.
+    pub const MODULE_DATA: u8 = 34;
+    /// GET_ID.
+    pub const GET_ID: u8 = 35;
+    /// SET_ID.
+    pub const SET_ID: u8 = 36;
+    /// FEATURE_CHECK.
+    pub const FEATURE_CHECK: u8 = 37;
+    /// BOOTLOADER_RESET.
+    pub const BOOTLOADER_RESET: u8 = 38;
+}
+
+/// Report ids (Pico → host), mirte firmware 1.3 numbering (spec §5).
+pub mod report_id {
+    /// SERIAL_LOOP_BACK_REPORT.
+    pub const SERIAL_LOOP_BACK: u8 = 0;
+    /// DIGITAL_REPORT.
+    pub const DIGITAL: u8 = 2;
+    /// ANALOG_REPORT.
+    pub const ANALOG: u8 = 3;
+    /// FIRMWARE_REPORT.
+    pub const FIRMWARE: u8 = 5;
+    /// REPORT_PICO_UNIQUE_ID.
+    pub const UNIQUE_ID: u8 = 6;
+    /// I2C_WRITE_REPORT (upstream: I2C_WRITE_FAILED).
+    pub const I2C_WRITE: u8 = 8;
+    /// I2C_READ_FAILED.
+    pub const I2C_READ_FAILED: u8 = 9;
+    /// I2C_READ_REPORT.
+    pub const I2C_READ: u8 = 10;
+    /// SONAR_DISTANCE.
+    pub const SONAR: u8 = 11;
+    /// DHT_REPORT.
+    pub const DHT: u8 = 12;
+    /// SPI_REPORT.
+    pub const SPI: u8 = 13;
+    /// ENCODER_REPORT.
+    pub const ENCODER: u8 = 14;
+    /// SENSOR_REPORT.
+    pub const SENSOR: u8 = 20;
+    /// SENSOR_MAIN_REPORT.
+    pub const SENSOR_MAIN: u8 = 21;
+    /// PONG_REPORT.
+    pub const PONG: u8 = 32;
+    /// MODULE_MAIN_REPORT.
+    pub const MODULE_MAIN: u8 = 33;
+    /// MODULE_REPORT.
+    pub const MODULE: u8 = 34;
+    /// GET_ID_REPORT.
+    pub const GET_ID: u8 = 35;
+    /// SET_ID_REPORT.
+    pub const SET_ID: u8 = 36;
+    /// FEATURE_CHECK.
+    pub const FEATURE_CHECK: u8 = 37;
+    /// DEBUG_PRINT.
+    pub const DEBUG_PRINT: u8 = 99;
+}
+
+/// Split a frame into `LEN`, id and payload, checking that `LEN` matches.
+pub(crate) fn split_frame(frame: &[u8]) -> Result<(u8, u8, &[u8]), Error> {
+    match frame {
+        [len, id, payload @ ..] if usize::from(*len) == payload.len() + 1 => {
+            Ok((*len, *id, payload))
+        }
+        [len, id, ..] => Err(Error::BadLength { id: *id, len: *len }),
+        _ => Err(Error::Truncated { len: frame.len() }),
+    }
+}
 
 /// Reads the payload of one frame; running past its end is a length error.
 pub(crate) struct Reader<'a> {
@@ -93,7 +262,7 @@ impl<'a> Reader<'a> {
     /// A GPIO number, which must be below 30.
     pub(crate) fn pin(&mut self, field: &'static str) -> Result<u8, Error> {
         let pin = self.u8()?;
-        super::error::ensure(pin < super::PIN_COUNT, self.id, field)?;
+        super::error::ensure(pin < PIN_COUNT, self.id, field)?;
         Ok(pin)
     }
 

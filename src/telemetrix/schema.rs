@@ -1,56 +1,313 @@
-//! JSON lines back into Telemetrix messages, in exactly the schema
-//! [`describe`](super::describe) writes.
+//! serde: the JSON-lines schema of the `robowire` tool is the serde form of
+//! every message, owned form and error. Serializing walks the fields of
+//! [`fields`](super::fields); deserializing reads them strictly (unknown
+//! fields, out-of-range values and wrong types are errors that name the
+//! field) and encodes, so a deserialized owned form holds a valid frame.
 
-use super::names::{
-    dialect_name, COMMAND_TYPES, MODULE_TYPES, PIN_MODES, REPORTING_ACTIONS, REPORT_TYPES,
-    SENSOR_TYPES,
+use alloc::format;
+use alloc::string::{String, ToString};
+use alloc::vec::Vec;
+use core::fmt;
+
+use serde::de::{self, Deserialize, Deserializer};
+use serde::ser::{Serialize, SerializeMap, SerializeSeq, Serializer};
+
+use super::buf::{CommandBuf, Message, MessageBuf, ReportBuf};
+use super::command::{
+    Command, EncoderKind, ModifyReporting, PinMode, Pull, Pulls, PwmPin, PwmPins, Rgb,
 };
-use crate::json::{read_f32, read_int, Fields};
-use robowire::telemetrix::{
-    Command, Dialect, EncoderKind, HiwonderCommand, List, ModifyReporting, ModuleInit, ModuleNew,
-    ModuleReport, ModuleType, Pca9685Channel, Pca9685Command, Pca9685Config, PinMode, Pull, Pulls,
-    PwmPin, PwmPins, RelayCommand, Report, Rgb, SensorNew, SensorReading, SensorType, ServoMove,
-    ServoPositions, Sonar, Ssd1306Command, Ssd1306Done, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE,
-    SONAR_STALE,
+use super::dialect::Dialect;
+use super::error::Error;
+use super::fields::{Visit, V, W};
+use super::list::List;
+use super::module::{
+    HiwonderCommand, ModuleCommand, ModuleInit, ModuleNew, ModuleReport, ModuleType,
+    Pca9685Channel, Pca9685Command, Pca9685Config, RelayCommand, ServoMove, ServoPositions,
+    Ssd1306Command, Ssd1306Done,
 };
-use serde_json::Value;
+use super::report::{Report, Sonar, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
+use super::sensor::{SensorNew, SensorReading, SensorType};
+use super::wire::{COMMAND_PAYLOAD_MAX, MAX_REPORT_FRAME};
+use crate::serde_support::{read_f32, read_int, serialize_f32, Fields, Value};
 
-/// The longest byte array a frame can carry.
-const MAX_BYTES: usize = 255;
+// ---------------------------------------------------------------- Serialize
 
-/// Read one JSON object and append the frame it describes, encoded for
-/// `dialect`, to `frame`.
-pub fn encode(dialect: Dialect, mut fields: Fields<'_>, frame: &mut Vec<u8>) -> Result<(), String> {
+/// The fields of a [`Visit`] as a map.
+struct Fields_<'a>(&'a dyn Visit);
+
+impl Serialize for Fields_<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(None)?;
+        let mut result = Ok(());
+        self.0.visit(&mut W(&mut |key, value| {
+            if result.is_ok() {
+                result = map.serialize_entry(key, &Field(value));
+            }
+        }));
+        result?;
+        map.end()
+    }
+}
+
+/// One field value.
+struct Field<'a>(V<'a>);
+
+/// An `f32` in the schema's form.
+struct F32(f32);
+
+impl Serialize for F32 {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serialize_f32(self.0, serializer)
+    }
+}
+
+/// Bytes as characters U+0000..=U+00FF.
+struct Latin1<'a>(&'a [u8]);
+
+impl fmt::Display for Latin1<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0
+            .iter()
+            .try_for_each(|&b| fmt::Write::write_char(f, char::from(b)))
+    }
+}
+
+impl Serialize for Field<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self.0 {
+            V::U(v) => serializer.serialize_u64(v),
+            V::I(v) => serializer.serialize_i64(v),
+            V::Bool(v) => serializer.serialize_bool(v),
+            V::Str(v) => serializer.serialize_str(v),
+            V::F32(v) => serialize_f32(v, serializer),
+            V::Bytes(v) => serializer.collect_seq(v),
+            V::U16s(v) => serializer.collect_seq(v),
+            V::I16s(v) => serializer.collect_seq(v),
+            V::F32s(v) => serializer.collect_seq(v.iter().map(|&x| F32(x))),
+            V::Latin1(v) => serializer.collect_str(&Latin1(v)),
+            V::Obj(o) => Fields_(o).serialize(serializer),
+            V::Objs(items) => {
+                let mut seq = serializer.serialize_seq(None)?;
+                let mut result = Ok(());
+                items.visit_each(&mut |o| {
+                    if result.is_ok() {
+                        result = seq.serialize_element(&Fields_(o));
+                    }
+                });
+                result?;
+                seq.end()
+            }
+        }
+    }
+}
+
+macro_rules! serialize_fields {
+    ($($ty:ty),*) => {$(
+        /// The JSON-lines schema: `type`, then the fields.
+        impl Serialize for $ty {
+            fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+                Fields_(self).serialize(serializer)
+            }
+        }
+    )*};
+}
+
+serialize_fields!(
+    Command<'_>,
+    Report<'_>,
+    Message<'_>,
+    CommandBuf,
+    ReportBuf,
+    MessageBuf
+);
+
+/// The schema's diagnostic: `error` (snake case) and the details.
+/// `len_byte` is a frame's `LEN` byte.
+impl Serialize for Error {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(None)?;
+        match *self {
+            Error::UnknownId { id } => {
+                map.serialize_entry("error", "unknown_id")?;
+                map.serialize_entry("id", &id)?;
+            }
+            Error::BadLength { id, len } => {
+                map.serialize_entry("error", "bad_length")?;
+                map.serialize_entry("id", &id)?;
+                map.serialize_entry("len_byte", &len)?;
+            }
+            Error::OutOfRange { id, field } => {
+                map.serialize_entry("error", "out_of_range")?;
+                map.serialize_entry("id", &id)?;
+                map.serialize_entry("field", field)?;
+            }
+            Error::Truncated { len } => {
+                map.serialize_entry("error", "truncated")?;
+                map.serialize_entry("len", &len)?;
+            }
+            Error::Superseded { len } => {
+                map.serialize_entry("error", "superseded")?;
+                map.serialize_entry("len", &len)?;
+            }
+        }
+        map.end()
+    }
+}
+
+macro_rules! serde_by_name {
+    ($($ty:ty),*) => {$(
+        /// Its name.
+        impl Serialize for $ty {
+            fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+                serializer.serialize_str(self.name())
+            }
+        }
+
+        /// Its name.
+        impl<'de> Deserialize<'de> for $ty {
+            fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+                let value = Value::deserialize(deserializer)?;
+                value
+                    .as_str()
+                    .and_then(|s| s.parse().ok())
+                    .ok_or_else(|| {
+                        de::Error::custom(format!(
+                            "must be one of {}, found {value}",
+                            <$ty>::NAMES.join(", ")
+                        ))
+                    })
+            }
+        }
+    )*};
+}
+
+serde_by_name!(Dialect, SensorType, ModuleType, EncoderKind);
+
+// ---------------------------------------------------------------- Deserialize
+
+/// Which messages a line may hold.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Want {
+    Commands,
+    Reports,
+    Any,
+}
+
+/// Read one JSON object of the schema and encode it for `dialect`.
+fn read_line(value: &Value, dialect: Dialect, want: Want) -> Result<MessageBuf, String> {
+    let map = value
+        .as_object()
+        .ok_or_else(|| format!("expected a JSON object, found {value}"))?;
+    let mut fields = Fields::new(map);
     let kind = fields.string("type")?;
     // `also` names the other reading of an ambiguous frame; the bytes are
     // the same either way.
     if let Some(also) = fields.optional("also") {
-        let known = also
-            .as_str()
-            .is_some_and(|t| COMMAND_TYPES.contains(&t) || REPORT_TYPES.contains(&t));
+        let known = also.as_str().is_some_and(|t| {
+            Command::NAMES.contains(&t) || Report::NAMES[..Report::NAMES.len() - 1].contains(&t)
+        });
         if !known {
             return Err(format!(
                 "field `also` must name a command or report type, found {also}"
             ));
         }
     }
-    let mut out = [0u8; 256];
-    let encoded = if COMMAND_TYPES.contains(&kind) {
-        let command = read_command(kind, &mut fields, dialect)?;
+    let mut bytes = Vec::new();
+    let encoded = if Command::NAMES.contains(&kind) && want != Want::Reports {
+        let command = read_command(kind, &mut fields, dialect, &mut bytes)?;
         fields.finish(&format!("for type {kind}"))?;
-        command.encode_in(dialect, &mut out)
-    } else if REPORT_TYPES.contains(&kind) || kind == "unknown_report" {
-        let report = read_report(kind, &mut fields, dialect)?;
+        command.to_buf_in(dialect).map(MessageBuf::from)
+    } else if Report::NAMES.contains(&kind) && want != Want::Commands {
+        let report = read_report(kind, &mut fields, dialect, &mut bytes)?;
         fields.finish(&format!("for type {kind}"))?;
-        report.encode_in(dialect, &mut out)
+        report.to_buf_in(dialect).map(MessageBuf::from)
     } else {
         return Err(format!("unknown type `{kind}`"));
     };
-    let n =
-        encoded.map_err(|e| format!("cannot encode {kind} for {}: {e}", dialect_name(dialect)))?;
-    frame.extend_from_slice(&out[..n]);
-    Ok(())
+    encoded.map_err(|e| format!("cannot encode {kind} for {dialect}: {e}"))
 }
+
+fn read_as<'de, D: Deserializer<'de>>(
+    deserializer: D,
+    dialect: Dialect,
+    want: Want,
+) -> Result<MessageBuf, D::Error> {
+    let value = Value::deserialize(deserializer)?;
+    read_line(&value, dialect, want).map_err(de::Error::custom)
+}
+
+impl MessageBuf {
+    /// Deserialize a command or report of the JSON-lines schema, encoded
+    /// for `dialect` (`Deserialize` reads mirte 1.3). Which fields a type
+    /// has depends on the dialect: upstream 1.1's I2C commands have no
+    /// `msg_id`, only mirte 1.3's `encoder_new` has `pulls`, and so on.
+    ///
+    /// ```
+    /// use robowire::telemetrix::{Dialect, MessageBuf};
+    ///
+    /// let line = r#"{"type":"i2c_read","port":0,"addr":104,"reg":117,"n":1,"no_stop":0}"#;
+    /// let mut json = serde_json::Deserializer::from_str(line);
+    /// let message = MessageBuf::deserialize_in(&mut json, Dialect::Upstream11)?;
+    /// assert_eq!(&message[..], &[0x06, 0x0B, 0x00, 0x68, 0x75, 0x01, 0x00]);
+    /// # Ok::<(), serde_json::Error>(())
+    /// ```
+    pub fn deserialize_in<'de, D: Deserializer<'de>>(
+        deserializer: D,
+        dialect: Dialect,
+    ) -> Result<Self, D::Error> {
+        read_as(deserializer, dialect, Want::Any)
+    }
+}
+
+/// A command or report of the JSON-lines schema, encoded for mirte 1.3 (see
+/// [`MessageBuf::deserialize_in`]). `offset` and `len` are ignored.
+impl<'de> Deserialize<'de> for MessageBuf {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        read_as(deserializer, Dialect::Mirte13, Want::Any)
+    }
+}
+
+impl CommandBuf {
+    /// Deserialize a command of the JSON-lines schema, encoded for
+    /// `dialect` (see [`MessageBuf::deserialize_in`]).
+    pub fn deserialize_in<'de, D: Deserializer<'de>>(
+        deserializer: D,
+        dialect: Dialect,
+    ) -> Result<Self, D::Error> {
+        let message = read_as(deserializer, dialect, Want::Commands)?;
+        CommandBuf::parse_in(message.frame(), dialect).map_err(de::Error::custom)
+    }
+}
+
+/// A command of the JSON-lines schema, encoded for mirte 1.3.
+impl<'de> Deserialize<'de> for CommandBuf {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        CommandBuf::deserialize_in(deserializer, Dialect::Mirte13)
+    }
+}
+
+impl ReportBuf {
+    /// Deserialize a report of the JSON-lines schema, encoded for `dialect`
+    /// (see [`MessageBuf::deserialize_in`]).
+    pub fn deserialize_in<'de, D: Deserializer<'de>>(
+        deserializer: D,
+        dialect: Dialect,
+    ) -> Result<Self, D::Error> {
+        let message = read_as(deserializer, dialect, Want::Reports)?;
+        let lenient = matches!(message.message(), Message::Report(Report::Unknown { .. }));
+        ReportBuf::parse_in(message.frame(), dialect, lenient).map_err(de::Error::custom)
+    }
+}
+
+/// A report of the JSON-lines schema, encoded for mirte 1.3.
+impl<'de> Deserialize<'de> for ReportBuf {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        ReportBuf::deserialize_in(deserializer, Dialect::Mirte13)
+    }
+}
+
+/// The longest byte array a frame can carry.
+const MAX_BYTES: usize = MAX_REPORT_FRAME - 1;
 
 fn u8_(f: &mut Fields<'_>, key: &str) -> Result<u8, String> {
     f.int(key, 0, 255).map(|v| v as u8)
@@ -81,6 +338,22 @@ fn level(f: &mut Fields<'_>, key: &str) -> Result<bool, String> {
     f.int(key, 0, 1).map(|v| v == 1)
 }
 
+/// The level of a digital write or report: `value` (0 or 1), or, for one
+/// release, the Rust field's name `high` (`true`/`false` or 0/1).
+fn digital_value(f: &mut Fields<'_>) -> Result<bool, String> {
+    if !f.has("value") && f.has("high") {
+        let value = f.value("high")?;
+        return match (value.as_bool(), value.as_i64()) {
+            (Some(high), _) => Ok(high),
+            (None, Some(v @ (0 | 1))) => Ok(v == 1),
+            _ => Err(format!(
+                "field `high` must be true, false, 0 or 1, found {value}"
+            )),
+        };
+    }
+    level(f, "value")
+}
+
 fn f32_(f: &mut Fields<'_>, key: &str) -> Result<f32, String> {
     read_f32(f.value(key)?).map_err(|e| format!("field `{key}` {e}"))
 }
@@ -103,6 +376,13 @@ fn bytes(f: &mut Fields<'_>, key: &str) -> Result<Vec<u8>, String> {
         .enumerate()
         .map(|(i, item)| byte(item).map_err(|e| format!("field `{key}[{i}]` {e}")))
         .collect()
+}
+
+/// An array of bytes kept in `buf`, borrowed for the message being read
+/// (every message has at most one, its last field).
+fn bytes_in<'b>(f: &mut Fields<'_>, key: &str, buf: &'b mut Vec<u8>) -> Result<&'b [u8], String> {
+    *buf = bytes(f, key)?;
+    Ok(buf)
 }
 
 /// An array of objects, each read by `read`.
@@ -174,12 +454,12 @@ fn type_byte(f: &mut Fields<'_>, key: &str, names: &[&str]) -> Result<u8, String
 }
 
 fn sensor_type(f: &mut Fields<'_>) -> Result<SensorType, String> {
-    let t = type_byte(f, "sensor_type", &SENSOR_TYPES)?;
+    let t = type_byte(f, "sensor_type", SensorType::NAMES)?;
     SensorType::from_u8(t).ok_or_else(|| format!("field `sensor_type` {t} is no known sensor type"))
 }
 
 fn module_type(f: &mut Fields<'_>) -> Result<ModuleType, String> {
-    let t = type_byte(f, "module_type", &MODULE_TYPES)?;
+    let t = type_byte(f, "module_type", ModuleType::NAMES)?;
     ModuleType::from_u8(t).ok_or_else(|| format!("field `module_type` {t} is no known module type"))
 }
 
@@ -191,12 +471,13 @@ fn rgb(f: &mut Fields<'_>) -> Result<Rgb, String> {
     })
 }
 
-/// The members of a command `kind` (one of [`COMMAND_TYPES`]).
-fn read_command(
+/// The members of a command `kind` (one of [`Command::NAMES`]).
+fn read_command<'b>(
     kind: &str,
     f: &mut Fields<'_>,
     dialect: Dialect,
-) -> Result<Command<Vec<u8>>, String> {
+    buf: &'b mut Vec<u8>,
+) -> Result<Command<'b>, String> {
     let upstream = dialect == Dialect::Upstream11;
     Ok(match kind {
         "serial_loop_back" => Command::LoopBack {
@@ -204,7 +485,7 @@ fn read_command(
         },
         "set_pin_mode" => {
             let pin = u8_(f, "pin")?;
-            let mode = match name(f, "mode", &PIN_MODES)? {
+            let mode = match name(f, "mode", PinMode::NAMES)? {
                 m @ 0..=2 => PinMode::DigitalInput {
                     pull: [Pull::None, Pull::Up, Pull::Down][m],
                     report: flag(f, "report_enable")?,
@@ -220,7 +501,7 @@ fn read_command(
         }
         "digital_write" => Command::DigitalWrite {
             pin: u8_(f, "pin")?,
-            high: level(f, "value")?,
+            value: digital_value(f)?,
         },
         "pwm_write" => {
             let pins = objects(f, "pins", |p| {
@@ -235,7 +516,7 @@ fn read_command(
             )
         }
         "modify_reporting" => {
-            let action = name(f, "action", &REPORTING_ACTIONS)?;
+            let action = name(f, "action", ModifyReporting::NAMES)?;
             Command::ModifyReporting(match action {
                 0 => ModifyReporting::DisableAll,
                 1 => ModifyReporting::EnableAnalog {
@@ -293,14 +574,14 @@ fn read_command(
             port: u8_(f, "port")?,
             addr: u8_(f, "addr")?,
             no_stop: u8_(f, "no_stop")?,
-            data: bytes(f, "data")?,
+            data: bytes_in(f, "data", buf)?,
         },
         "i2c_write" => Command::I2cWrite {
             port: u8_(f, "port")?,
             addr: u8_(f, "addr")?,
             msg_id: u8_(f, "msg_id")?,
             no_stop: u8_(f, "no_stop")?,
-            data: bytes(f, "data")?,
+            data: bytes_in(f, "data", buf)?,
         },
         "sonar_new" => Command::SonarNew {
             trig: u8_(f, "trig")?,
@@ -341,11 +622,11 @@ fn read_command(
             pin_b: u8_(f, "pin_b")?,
             clk: u8_(f, "clk")?,
             freq_hz: f.int("freq_hz", 0, i64::from(u32::MAX))? as u32,
-            cs_pins: bytes(f, "cs_pins")?,
+            cs_pins: bytes_in(f, "cs_pins", buf)?,
         },
         "spi_write_blocking" => Command::SpiWrite {
             port: u8_(f, "port")?,
-            data: bytes(f, "data")?,
+            data: bytes_in(f, "data", buf)?,
         },
         "spi_read_blocking" => Command::SpiRead {
             port: u8_(f, "port")?,
@@ -366,7 +647,7 @@ fn read_command(
             delay_ms: u8_(f, "delay_ms")?,
         },
         "encoder_new" => Command::EncoderNew {
-            kind: match name(f, "kind", &["single", "quadrature"])? {
+            kind: match name(f, "kind", EncoderKind::NAMES)? {
                 0 => EncoderKind::Single,
                 _ => EncoderKind::Quadrature,
             },
@@ -375,19 +656,19 @@ fn read_command(
             // Only mirte 1.3 has the pulls byte; elsewhere `pulls` is an
             // unknown field.
             pulls: if dialect == Dialect::Mirte13 {
-                nested(f, "pulls", |p| {
+                Some(nested(f, "pulls", |p| {
                     Ok(Pulls {
                         up: flag(p, "up")?,
                         down: flag(p, "down")?,
                     })
-                })?
+                })?)
             } else {
-                Pulls::default()
+                None
             },
         },
         "sensor_new" => Command::SensorNew(match name(f, "subtype", &["check", "add"])? {
             0 => SensorNew::Check {
-                sensor_type: type_byte(f, "sensor_type", &SENSOR_TYPES)?,
+                sensor_type: type_byte(f, "sensor_type", SensorType::NAMES)?,
             },
             _ => SensorNew::Add {
                 sensor_num: u8_(f, "sensor_num")?,
@@ -400,28 +681,28 @@ fn read_command(
         },
         "module_new" => Command::ModuleNew(match name(f, "subtype", &["check", "add"])? {
             0 => ModuleNew::Check {
-                module_type: type_byte(f, "module_type", &MODULE_TYPES)?,
+                module_type: type_byte(f, "module_type", ModuleType::NAMES)?,
             },
             _ => {
                 let module_num = u8_(f, "module_num")?;
                 let module_type = module_type(f)?;
                 ModuleNew::Add {
                     module_num,
-                    init: nested(f, "init", |i| module_init(module_type, i))?,
+                    init: nested(f, "init", move |i| module_init(module_type, i, buf))?,
                 }
             }
         }),
         "module_data" => {
             let module_num = u8_(f, "module_num")?;
-            if f.has("module_type") {
+            let data: &[u8] = if f.has("module_type") {
                 let module_type = module_type(f)?;
-                nested(f, "message", |m| module_data(module_num, module_type, m))?
+                let data = nested(f, "message", |m| module_data(module_type, m))?;
+                *buf = data.to_vec();
+                &buf[..]
             } else {
-                Command::ModuleData {
-                    module_num,
-                    data: bytes(f, "data")?,
-                }
-            }
+                bytes_in(f, "data", buf)?
+            };
+            Command::ModuleData { module_num, data }
         }
         "get_id" => Command::GetId,
         "set_id" => Command::SetId { id: u8_(f, "id")? },
@@ -433,7 +714,11 @@ fn read_command(
     })
 }
 
-fn module_init(module_type: ModuleType, f: &mut Fields<'_>) -> Result<ModuleInit<Vec<u8>>, String> {
+fn module_init<'b>(
+    module_type: ModuleType,
+    f: &mut Fields<'_>,
+    buf: &'b mut Vec<u8>,
+) -> Result<ModuleInit<'b>, String> {
     Ok(match module_type {
         ModuleType::Pca9685 => ModuleInit::Pca9685 {
             port: u8_(f, "port")?,
@@ -449,7 +734,7 @@ fn module_init(module_type: ModuleType, f: &mut Fields<'_>) -> Result<ModuleInit
             uart: u8_(f, "uart")?,
             rx: u8_(f, "rx")?,
             tx: u8_(f, "tx")?,
-            bus_ids: bytes(f, "bus_ids")?,
+            bus_ids: bytes_in(f, "bus_ids", buf)?,
         },
         ModuleType::ShutdownRelay => ModuleInit::ShutdownRelay {
             pin: u8_(f, "pin")?,
@@ -468,16 +753,13 @@ fn module_init(module_type: ModuleType, f: &mut Fields<'_>) -> Result<ModuleInit
 }
 
 /// Typed MODULE_DATA: the module's message, built into the data bytes by the
-/// library (which checks it as the module's parser would).
+/// module (which checks it as its parser would).
 fn module_data(
-    module_num: u8,
     module_type: ModuleType,
     f: &mut Fields<'_>,
-) -> Result<Command<Vec<u8>>, String> {
-    let command = match module_type {
-        ModuleType::HiwonderServo => {
-            Command::<Vec<u8>>::module_data(module_num, &hiwonder_command(f)?)
-        }
+) -> Result<List<u8, COMMAND_PAYLOAD_MAX>, String> {
+    let data = match module_type {
+        ModuleType::HiwonderServo => hiwonder_command(f)?.to_data(),
         ModuleType::Pca9685 => {
             let channels = objects(f, "channels", |c| {
                 Ok(Pca9685Channel {
@@ -488,20 +770,16 @@ fn module_data(
             })?;
             let channels = List::from_slice(&channels)
                 .map_err(|_| format!("`channels` holds {}, at most 5", channels.len()))?;
-            Command::<Vec<u8>>::module_data(module_num, &Pca9685Command { channels })
+            Pca9685Command { channels }.to_data()
         }
-        ModuleType::Ssd1306 => Command::<Vec<u8>>::module_data(module_num, &ssd1306_command(f)?),
-        ModuleType::ShutdownRelay => {
-            let message = match name(f, "subtype", &["start", "cancel"])? {
-                0 => RelayCommand::Start,
-                _ => RelayCommand::Cancel,
-            };
-            Command::<Vec<u8>>::module_data(module_num, &message)
+        ModuleType::Ssd1306 => ssd1306_command(f)?.to_data(),
+        ModuleType::ShutdownRelay => match name(f, "subtype", &["start", "cancel"])? {
+            0 => RelayCommand::Start,
+            _ => RelayCommand::Cancel,
         }
+        .to_data(),
     };
-    command
-        .map(|c| c.map_bytes(|data| data.to_vec()))
-        .map_err(|e| e.to_string())
+    data.map_err(|e| e.to_string())
 }
 
 const HIWONDER_SUBTYPES: [&str; 11] = [
@@ -586,7 +864,7 @@ fn ssd1306_command(f: &mut Fields<'_>) -> Result<Ssd1306Command, String> {
             let text = value
                 .as_str()
                 .ok_or_else(|| format!("field `text` must be a string, found {value}"))?;
-            // One character per byte (ISO 8859-1), as decode writes it.
+            // One character per byte (ISO 8859-1), as it is written.
             let bytes = text
                 .chars()
                 .map(u8::try_from)
@@ -624,13 +902,13 @@ fn sonar_cm(f: &mut Fields<'_>) -> Result<u16, String> {
     }
 }
 
-/// The members of a report `kind` (one of [`REPORT_TYPES`] or
-/// `unknown_report`).
-fn read_report(
+/// The members of a report `kind` (one of [`Report::NAMES`]).
+fn read_report<'b>(
     kind: &str,
     f: &mut Fields<'_>,
     dialect: Dialect,
-) -> Result<Report<Vec<u8>>, String> {
+    buf: &'b mut Vec<u8>,
+) -> Result<Report<'b>, String> {
     let upstream = dialect == Dialect::Upstream11;
     Ok(match kind {
         "serial_loop_back_report" => Report::LoopBack {
@@ -638,7 +916,7 @@ fn read_report(
         },
         "digital_report" => Report::Digital {
             pin: u8_(f, "pin")?,
-            high: level(f, "value")?,
+            value: digital_value(f)?,
         },
         "analog_report" => Report::Analog {
             pin: u8_(f, "pin")?,
@@ -670,13 +948,13 @@ fn read_report(
             port: u8_(f, "port")?,
             addr: u8_(f, "addr")?,
             reg: u8_(f, "reg")?,
-            data: bytes(f, "data")?,
+            data: bytes_in(f, "data", buf)?,
         },
         "i2c_read_report" => Report::I2cRead {
             port: u8_(f, "port")?,
             msg_id: u8_(f, "msg_id")?,
             reg: u8_(f, "reg")?,
-            data: bytes(f, "data")?,
+            data: bytes_in(f, "data", buf)?,
         },
         "sonar_distance" => Report::Sonar(match dialect {
             Dialect::Mirte13 => {
@@ -714,7 +992,7 @@ fn read_report(
         },
         "spi_report" => Report::Spi {
             port: u8_(f, "port")?,
-            data: bytes(f, "data")?,
+            data: bytes_in(f, "data", buf)?,
         },
         "encoder_report" => Report::Encoder {
             pin: u8_(f, "pin_a")?,
@@ -729,7 +1007,7 @@ fn read_report(
             }
         }
         "sensor_main_report" => Report::SensorSupported {
-            sensor_type: type_byte(f, "sensor_type", &SENSOR_TYPES)?,
+            sensor_type: type_byte(f, "sensor_type", SensorType::NAMES)?,
             supported: flag(f, "supported")?,
         },
         "pong" => Report::Pong {
@@ -737,7 +1015,7 @@ fn read_report(
             boot_id: u8_(f, "boot_id")?,
         },
         "module_main_report" => Report::ModuleSupported {
-            module_type: type_byte(f, "module_type", &MODULE_TYPES)?,
+            module_type: type_byte(f, "module_type", ModuleType::NAMES)?,
             supported: flag(f, "supported")?,
         },
         "module_report" => {
@@ -745,7 +1023,7 @@ fn read_report(
             let module_type = module_type(f)?;
             Report::Module {
                 module_num,
-                report: nested(f, "message", |m| module_report(module_type, m))?,
+                report: nested(f, "message", move |m| module_report(module_type, m, buf))?,
             }
         }
         "get_id_report" => Report::Id { id: u8_(f, "id")? },
@@ -753,7 +1031,7 @@ fn read_report(
         "feature_check" => Report::Feature {
             msg_type: u8_(f, "msg_type")?,
             supported: flag(f, "ok")?,
-            extras: bytes(f, "extras")?,
+            extras: bytes_in(f, "extras", buf)?,
         },
         "debug_print" => Report::Debug {
             id: u8_(f, "id")?,
@@ -761,7 +1039,7 @@ fn read_report(
         },
         "unknown_report" => Report::Unknown {
             id: u8_(f, "id")?,
-            payload: bytes(f, "payload")?,
+            payload: bytes_in(f, "payload", buf)?,
         },
         other => return Err(format!("unknown type `{other}`")),
     })
@@ -777,7 +1055,7 @@ fn i16s<const N: usize>(f: &mut Fields<'_>, key: &str) -> Result<[i16; N], Strin
 
 fn sensor_reading(sensor_type: SensorType, f: &mut Fields<'_>) -> Result<SensorReading, String> {
     Ok(match sensor_type {
-        SensorType::Gps => return Err("GPS sends no readings".to_owned()),
+        SensorType::Gps => return Err("GPS sends no readings".to_string()),
         SensorType::Hx711 => SensorReading::Hx711 {
             raw: f.int("raw", i64::from(i32::MIN), i64::from(i32::MAX))? as i32,
         },
@@ -834,10 +1112,11 @@ fn sensor_reading(sensor_type: SensorType, f: &mut Fields<'_>) -> Result<SensorR
     })
 }
 
-fn module_report(
+fn module_report<'b>(
     module_type: ModuleType,
     f: &mut Fields<'_>,
-) -> Result<ModuleReport<Vec<u8>>, String> {
+    buf: &'b mut Vec<u8>,
+) -> Result<ModuleReport<'b>, String> {
     Ok(match module_type {
         ModuleType::HiwonderServo => {
             let subtypes = ["positions", "id_verify", "range", "offset", "added"];
@@ -846,14 +1125,14 @@ fn module_report(
                     let positions = objects(f, "positions", |p| {
                         Ok((u8_(p, "idx")?, u16_(p, "centideg")?))
                     })?;
-                    let raw = positions
+                    *buf = positions
                         .iter()
                         .flat_map(|&(idx, cdeg)| {
                             let [hi, lo] = cdeg.to_be_bytes();
                             [idx, hi, lo]
                         })
                         .collect();
-                    ModuleReport::HiwonderPositions(ServoPositions::from_raw(raw))
+                    ModuleReport::HiwonderPositions(ServoPositions::from_raw(buf))
                 }
                 1 => ModuleReport::HiwonderIdVerify {
                     bus_id: u8_(f, "bus_id")?,
@@ -893,10 +1172,7 @@ fn module_report(
             }
         }
         ModuleType::Pca9685 | ModuleType::ShutdownRelay => {
-            return Err(format!(
-                "module type {} sends no reports",
-                MODULE_TYPES[usize::from(module_type.as_u8())]
-            ))
+            return Err(format!("module type {module_type} sends no reports"))
         }
     })
 }

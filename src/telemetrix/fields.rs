@@ -1,0 +1,1017 @@
+//! The fields of every message, in the order and with the names of the
+//! JSON-lines schema, written once: `Display` walks them as `name k=v …`,
+//! and (with `serde`) `Serialize` as a map.
+
+use core::fmt;
+
+use super::buf::{CommandBuf, Message, MessageBuf, ReportBuf};
+use super::command::{Command, ModifyReporting, PinMode, PwmPin, Rgb};
+use super::list::List;
+use super::module::{
+    HiwonderCommand, ModuleCommand, ModuleInit, ModuleNew, ModuleReport, ModuleType,
+    Pca9685Channel, Pca9685Command, RelayCommand, ServoMove, ServoPosition, ServoPositions,
+    Ssd1306Command, Ssd1306Done,
+};
+use super::report::{Report, Sonar, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
+use super::sensor::{SensorNew, SensorReading, SensorType};
+
+/// One field value.
+#[derive(Clone, Copy)]
+pub(crate) enum V<'a> {
+    U(u64),
+    I(i64),
+    Bool(bool),
+    Str(&'a str),
+    F32(f32),
+    /// An array of numbers.
+    Bytes(&'a [u8]),
+    U16s(&'a [u16]),
+    I16s(&'a [i16]),
+    F32s(&'a [f32]),
+    /// Bytes as a string, one character per byte (ISO 8859-1).
+    Latin1(&'a [u8]),
+    Obj(&'a dyn Visit),
+    Objs(&'a dyn VisitSeq),
+}
+
+/// Something with named fields.
+pub(crate) trait Visit {
+    fn visit(&self, w: &mut W<'_>);
+}
+
+/// A sequence of things with named fields.
+pub(crate) trait VisitSeq {
+    fn visit_each(&self, f: &mut dyn FnMut(&dyn Visit));
+}
+
+/// The receiver of fields.
+pub(crate) struct W<'f>(pub(crate) &'f mut dyn FnMut(&'static str, V<'_>));
+
+impl W<'_> {
+    fn v(&mut self, key: &'static str, value: V<'_>) {
+        (self.0)(key, value);
+    }
+    fn u(&mut self, key: &'static str, value: impl Into<u64>) {
+        self.v(key, V::U(value.into()));
+    }
+    fn i(&mut self, key: &'static str, value: impl Into<i64>) {
+        self.v(key, V::I(value.into()));
+    }
+    fn flag(&mut self, key: &'static str, value: bool) {
+        self.v(key, V::Bool(value));
+    }
+    /// A level: 0 or 1.
+    fn level(&mut self, key: &'static str, value: bool) {
+        self.u(key, u8::from(value));
+    }
+    fn s(&mut self, key: &'static str, value: &str) {
+        self.v(key, V::Str(value));
+    }
+    fn bytes(&mut self, key: &'static str, value: &[u8]) {
+        self.v(key, V::Bytes(value));
+    }
+    fn obj(&mut self, key: &'static str, value: &dyn Visit) {
+        self.v(key, V::Obj(value));
+    }
+    fn objs(&mut self, key: &'static str, value: &dyn VisitSeq) {
+        self.v(key, V::Objs(value));
+    }
+    /// A type byte: its name where it names a known type, its number
+    /// otherwise.
+    fn type_byte(&mut self, key: &'static str, value: u8, names: &[&str]) {
+        match names.get(usize::from(value)) {
+            Some(name) => self.s(key, name),
+            None => self.u(key, value),
+        }
+    }
+}
+
+/// Fields written by a closure.
+pub(crate) struct FnVisit<F: Fn(&mut W<'_>)>(pub(crate) F);
+
+impl<F: Fn(&mut W<'_>)> Visit for FnVisit<F> {
+    fn visit(&self, w: &mut W<'_>) {
+        (self.0)(w);
+    }
+}
+
+impl<T: Visit, const N: usize> VisitSeq for List<T, N> {
+    fn visit_each(&self, f: &mut dyn FnMut(&dyn Visit)) {
+        for item in self {
+            f(item);
+        }
+    }
+}
+
+impl Visit for PwmPin {
+    fn visit(&self, w: &mut W<'_>) {
+        w.u("pin", self.pin);
+        w.u("value", self.value);
+    }
+}
+
+impl Visit for ServoMove {
+    fn visit(&self, w: &mut W<'_>) {
+        w.u("idx", self.idx);
+        w.u("centideg", self.centideg);
+        w.u("time_ms", self.time_ms);
+    }
+}
+
+impl Visit for Pca9685Channel {
+    fn visit(&self, w: &mut W<'_>) {
+        w.u("channel", self.channel);
+        w.u("on", self.on);
+        w.u("off", self.off);
+    }
+}
+
+impl Visit for ServoPosition {
+    fn visit(&self, w: &mut W<'_>) {
+        w.u("idx", self.idx);
+        w.u("centideg", self.centideg);
+    }
+}
+
+impl VisitSeq for ServoPositions<'_> {
+    fn visit_each(&self, f: &mut dyn FnMut(&dyn Visit)) {
+        for position in self.iter() {
+            f(&position);
+        }
+    }
+}
+
+fn rgb(w: &mut W<'_>, rgb: Rgb) {
+    w.u("r", rgb.r);
+    w.u("g", rgb.g);
+    w.u("b", rgb.b);
+}
+
+/// A command with what a capture told about it: the other reading's type
+/// and the type of the module a MODULE_DATA goes to.
+pub(crate) struct CommandView<'c, 'a> {
+    pub(crate) command: &'c Command<'a>,
+    pub(crate) also: Option<&'static str>,
+    pub(crate) module_type: Option<ModuleType>,
+}
+
+/// A report with the other reading's type.
+pub(crate) struct ReportView<'r, 'a> {
+    pub(crate) report: &'r Report<'a>,
+    pub(crate) also: Option<&'static str>,
+}
+
+impl Visit for Command<'_> {
+    fn visit(&self, w: &mut W<'_>) {
+        CommandView {
+            command: self,
+            also: None,
+            module_type: None,
+        }
+        .visit(w);
+    }
+}
+
+impl Visit for Report<'_> {
+    fn visit(&self, w: &mut W<'_>) {
+        ReportView {
+            report: self,
+            also: None,
+        }
+        .visit(w);
+    }
+}
+
+impl Visit for Message<'_> {
+    fn visit(&self, w: &mut W<'_>) {
+        match self {
+            Message::Command(c) => c.visit(w),
+            Message::Report(r) => r.visit(w),
+        }
+    }
+}
+
+impl Visit for CommandBuf {
+    fn visit(&self, w: &mut W<'_>) {
+        self.message().visit(w);
+    }
+}
+
+impl Visit for ReportBuf {
+    fn visit(&self, w: &mut W<'_>) {
+        self.message().visit(w);
+    }
+}
+
+impl Visit for MessageBuf {
+    fn visit(&self, w: &mut W<'_>) {
+        let also = self.also().map(|m| match m {
+            Message::Command(c) => c.name(),
+            Message::Report(r) => r.name(),
+        });
+        match self.message() {
+            Message::Command(command) => CommandView {
+                command: &command,
+                also,
+                module_type: self.module_type(),
+            }
+            .visit(w),
+            Message::Report(report) => ReportView {
+                report: &report,
+                also,
+            }
+            .visit(w),
+        }
+    }
+}
+
+impl Visit for CommandView<'_, '_> {
+    fn visit(&self, w: &mut W<'_>) {
+        w.s("type", self.command.name());
+        if let Some(also) = self.also {
+            w.s("also", also);
+        }
+        match *self.command {
+            Command::LoopBack { byte } => w.u("byte", byte),
+            Command::SetPinMode { pin, mode } => {
+                w.u("pin", pin);
+                w.s("mode", mode.name());
+                match mode {
+                    PinMode::DigitalInput { report, .. } => w.flag("report_enable", report),
+                    PinMode::AnalogInput {
+                        differential,
+                        report,
+                    } => {
+                        w.u("differential", differential);
+                        w.flag("report_enable", report);
+                    }
+                    PinMode::DigitalOutput | PinMode::PwmOutput => {}
+                }
+            }
+            Command::DigitalWrite { pin, value } => {
+                w.u("pin", pin);
+                w.level("value", value);
+            }
+            Command::PwmWrite(pins) => w.objs("pins", &pins),
+            Command::ModifyReporting(action) => {
+                w.s("action", action.name());
+                match action {
+                    ModifyReporting::DisableAll => {}
+                    ModifyReporting::EnableAnalog { pin }
+                    | ModifyReporting::EnableDigital { pin }
+                    | ModifyReporting::DisableAnalog { pin }
+                    | ModifyReporting::DisableDigital { pin } => w.u("pin", pin),
+                }
+            }
+            Command::GetFirmwareVersion
+            | Command::GetUniqueId
+            | Command::StopAllReports
+            | Command::EnableAllReports
+            | Command::ResetData
+            | Command::ResetBoard
+            | Command::ShowNeoPixels
+            | Command::GetId
+            | Command::BootloaderReset => {}
+            Command::ServoAttach { pin, pulse_range } => {
+                w.u("pin", pin);
+                if let Some((min_us, max_us)) = pulse_range {
+                    w.u("min_us", min_us);
+                    w.u("max_us", max_us);
+                }
+            }
+            Command::ServoWrite { pin, pulse_us } => {
+                w.u("pin", pin);
+                w.u("pulse_us", pulse_us);
+            }
+            Command::ServoDetach { pin } | Command::DhtNew { pin } => w.u("pin", pin),
+            Command::I2cBegin { port, sda, scl } => {
+                w.u("port", port);
+                w.u("sda", sda);
+                w.u("scl", scl);
+            }
+            Command::I2cRead {
+                port,
+                addr,
+                msg_id,
+                reg,
+                len,
+                no_stop,
+            } => {
+                w.u("port", port);
+                w.u("addr", addr);
+                w.u("msg_id", msg_id);
+                w.u("reg", reg);
+                w.u("n", len);
+                w.u("no_stop", no_stop);
+            }
+            Command::I2cReadUpstream {
+                port,
+                addr,
+                reg,
+                len,
+                no_stop,
+            } => {
+                w.u("port", port);
+                w.u("addr", addr);
+                w.u("reg", reg);
+                w.u("n", len);
+                w.u("no_stop", no_stop);
+            }
+            Command::I2cWrite {
+                port,
+                addr,
+                msg_id,
+                no_stop,
+                data,
+            } => {
+                w.u("port", port);
+                w.u("addr", addr);
+                w.u("msg_id", msg_id);
+                w.u("no_stop", no_stop);
+                w.bytes("data", data);
+            }
+            Command::I2cWriteUpstream {
+                port,
+                addr,
+                no_stop,
+                data,
+            } => {
+                w.u("port", port);
+                w.u("addr", addr);
+                w.u("no_stop", no_stop);
+                w.bytes("data", data);
+            }
+            Command::SonarNew { trig, echo } => {
+                w.u("trig", trig);
+                w.u("echo", echo);
+            }
+            Command::InitNeoPixels {
+                pin,
+                count,
+                rgb: color,
+            } => {
+                w.u("pin", pin);
+                w.u("count", count);
+                rgb(w, color);
+            }
+            Command::SetNeoPixel {
+                index,
+                rgb: color,
+                auto_show,
+            } => {
+                w.u("index", index);
+                rgb(w, color);
+                w.flag("auto_show", auto_show);
+            }
+            Command::ClearAllNeoPixels { auto_show } => {
+                if let Some(auto_show) = auto_show {
+                    w.flag("auto_show", auto_show);
+                }
+            }
+            Command::FillNeoPixels {
+                rgb: color,
+                auto_show,
+            } => {
+                rgb(w, color);
+                w.flag("auto_show", auto_show);
+            }
+            Command::SpiInit {
+                port,
+                pin_a,
+                pin_b,
+                clk,
+                freq_hz,
+                cs_pins,
+            } => {
+                w.u("port", port);
+                w.u("pin_a", pin_a);
+                w.u("pin_b", pin_b);
+                w.u("clk", clk);
+                w.u("freq_hz", freq_hz);
+                w.bytes("cs_pins", cs_pins);
+            }
+            Command::SpiWrite { port, data } => {
+                w.u("port", port);
+                w.bytes("data", data);
+            }
+            Command::SpiRead { port, len, tx_fill } => {
+                w.u("port", port);
+                w.u("n", len);
+                w.u("tx_fill", tx_fill);
+            }
+            Command::SpiSetFormat {
+                port,
+                data_bits,
+                cpol,
+                cpha,
+            } => {
+                w.u("port", port);
+                w.u("data_bits", data_bits);
+                w.level("cpol", cpol);
+                w.level("cpha", cpha);
+            }
+            Command::SpiCsControl { cs_pin, high } => {
+                w.u("cs_pin", cs_pin);
+                w.level("level", high);
+            }
+            Command::SetScanDelay { delay_ms } => w.u("delay_ms", delay_ms),
+            Command::EncoderNew {
+                kind,
+                pin_a,
+                pin_b,
+                pulls,
+            } => {
+                w.s("kind", kind.name());
+                w.u("pin_a", pin_a);
+                w.u("pin_b", pin_b);
+                // Only mirte 1.3 sends the pulls byte.
+                if let Some(pulls) = pulls {
+                    w.obj(
+                        "pulls",
+                        &FnVisit(|o: &mut W<'_>| {
+                            o.flag("up", pulls.up);
+                            o.flag("down", pulls.down);
+                        }),
+                    );
+                }
+            }
+            Command::SensorNew(SensorNew::Check { sensor_type }) => {
+                w.s("subtype", "check");
+                w.type_byte("sensor_type", sensor_type, SensorType::NAMES);
+            }
+            Command::SensorNew(SensorNew::Add {
+                sensor_num,
+                sensor_type,
+                settings,
+            }) => {
+                w.s("subtype", "add");
+                w.u("sensor_num", sensor_num);
+                w.s("sensor_type", sensor_type.name());
+                w.bytes("settings", &settings);
+            }
+            Command::Ping { counter } => w.u("counter", counter),
+            Command::ModuleNew(ModuleNew::Check { module_type }) => {
+                w.s("subtype", "check");
+                w.type_byte("module_type", module_type, ModuleType::NAMES);
+            }
+            Command::ModuleNew(ModuleNew::Add { module_num, init }) => {
+                w.s("subtype", "add");
+                w.u("module_num", module_num);
+                w.s("module_type", init.module_type().name());
+                w.obj("init", &FnVisit(|o: &mut W<'_>| module_init(&init, o)));
+            }
+            Command::ModuleData { module_num, data } => {
+                w.u("module_num", module_num);
+                let typed = self
+                    .module_type
+                    .and_then(|t| ModuleData::parse(t, data).map(|m| (t, m)));
+                match typed {
+                    Some((module_type, message)) => {
+                        w.s("module_type", module_type.name());
+                        w.obj("message", &message);
+                    }
+                    None => w.bytes("data", data),
+                }
+            }
+            Command::SetId { id } => w.u("id", id),
+            Command::FeatureCheck { msg_type } => w.u("msg_type", msg_type),
+        }
+    }
+}
+
+fn module_init(init: &ModuleInit<'_>, o: &mut W<'_>) {
+    match *init {
+        ModuleInit::Pca9685 { port, config } => {
+            o.u("port", port);
+            if let Some(config) = config {
+                o.u("addr", config.addr);
+                o.u("freq_hz", config.freq_hz);
+            }
+        }
+        ModuleInit::HiwonderServo {
+            uart,
+            rx,
+            tx,
+            bus_ids,
+        } => {
+            o.u("uart", uart);
+            o.u("rx", rx);
+            o.u("tx", tx);
+            o.bytes("bus_ids", bus_ids);
+        }
+        ModuleInit::ShutdownRelay {
+            pin,
+            active_high,
+            wait_s,
+        } => {
+            o.u("pin", pin);
+            o.level("active_level", active_high);
+            o.u("wait_s", wait_s);
+        }
+        ModuleInit::Ssd1306 { port, addr } => {
+            o.u("port", port);
+            if let Some(addr) = addr {
+                o.u("addr", addr);
+            }
+        }
+    }
+}
+
+/// MODULE_DATA parsed as the data of one module type.
+enum ModuleData {
+    Hiwonder(HiwonderCommand),
+    Pca9685(Pca9685Command),
+    Ssd1306(Ssd1306Command),
+    Relay(RelayCommand),
+}
+
+impl ModuleData {
+    fn parse(module_type: ModuleType, data: &[u8]) -> Option<Self> {
+        match module_type {
+            ModuleType::HiwonderServo => HiwonderCommand::parse(data).ok().map(Self::Hiwonder),
+            ModuleType::Pca9685 => Pca9685Command::parse(data).ok().map(Self::Pca9685),
+            ModuleType::Ssd1306 => Ssd1306Command::parse(data).ok().map(Self::Ssd1306),
+            ModuleType::ShutdownRelay => RelayCommand::parse(data).ok().map(Self::Relay),
+        }
+    }
+}
+
+impl Visit for ModuleData {
+    fn visit(&self, o: &mut W<'_>) {
+        match self {
+            ModuleData::Hiwonder(m) => hiwonder_command(m, o),
+            ModuleData::Pca9685(m) => o.objs("channels", &m.channels),
+            ModuleData::Ssd1306(m) => ssd1306_command(m, o),
+            ModuleData::Relay(m) => o.s(
+                "subtype",
+                match m {
+                    RelayCommand::Start => "start",
+                    RelayCommand::Cancel => "cancel",
+                },
+            ),
+        }
+    }
+}
+
+fn hiwonder_command(message: &HiwonderCommand, o: &mut W<'_>) {
+    match *message {
+        HiwonderCommand::SetAngle(ref moves) => {
+            o.s("subtype", "set_angle");
+            o.objs("moves", moves);
+        }
+        HiwonderCommand::Enable {
+            enabled,
+            ref servos,
+        } => {
+            o.s("subtype", "enable");
+            o.flag("enabled", enabled);
+            o.bytes("servos", servos);
+        }
+        HiwonderCommand::IdWrite { new_id } => {
+            o.s("subtype", "id_write");
+            o.u("new_id", new_id);
+        }
+        HiwonderCommand::IdVerify { bus_id } => {
+            o.s("subtype", "id_verify");
+            o.u("bus_id", bus_id);
+        }
+        HiwonderCommand::RangeWrite {
+            idx,
+            min_cdeg,
+            max_cdeg,
+        } => {
+            o.s("subtype", "range_write");
+            o.u("idx", idx);
+            o.u("min_cdeg", min_cdeg);
+            o.u("max_cdeg", max_cdeg);
+        }
+        HiwonderCommand::RangeRead { idx } => {
+            o.s("subtype", "range_read");
+            o.u("idx", idx);
+        }
+        HiwonderCommand::OffsetWrite { idx, offset_cdeg } => {
+            o.s("subtype", "offset_write");
+            o.u("idx", idx);
+            o.i("offset_cdeg", offset_cdeg);
+        }
+        HiwonderCommand::OffsetRead { idx } => {
+            o.s("subtype", "offset_read");
+            o.u("idx", idx);
+        }
+        HiwonderCommand::VoltageLimitWrite {
+            idx,
+            min_mv,
+            max_mv,
+        } => {
+            o.s("subtype", "voltage_limit_write");
+            o.u("idx", idx);
+            o.u("min_mv", min_mv);
+            o.u("max_mv", max_mv);
+        }
+        HiwonderCommand::MotorModeWrite { idx, speed } => {
+            o.s("subtype", "motor_mode_write");
+            o.u("idx", idx);
+            o.i("speed", speed);
+        }
+        HiwonderCommand::AddServo { bus_id } => {
+            o.s("subtype", "add_servo");
+            o.u("bus_id", bus_id);
+        }
+    }
+}
+
+fn ssd1306_command(message: &Ssd1306Command, o: &mut W<'_>) {
+    match message {
+        Ssd1306Command::Text(text) => {
+            o.s("subtype", "text");
+            o.v("text", V::Latin1(text));
+        }
+        Ssd1306Command::TextDone => o.s("subtype", "text_done"),
+        Ssd1306Command::Binary { chunk, data } => {
+            o.s("subtype", "binary");
+            o.u("chunk", *chunk);
+            o.bytes("data", data);
+        }
+        Ssd1306Command::BinaryDone => o.s("subtype", "binary_done"),
+    }
+}
+
+/// A mirte 1.3 sonar distance: centimetres, or the name of a sentinel.
+fn sonar_cm(w: &mut W<'_>, cm: u16) {
+    match cm {
+        SONAR_NO_ECHO => w.s("cm", "no_echo"),
+        SONAR_OUT_OF_RANGE => w.s("cm", "out_of_range"),
+        SONAR_STALE => w.s("cm", "stale"),
+        cm => w.u("cm", cm),
+    }
+}
+
+impl Visit for ReportView<'_, '_> {
+    fn visit(&self, w: &mut W<'_>) {
+        w.s("type", self.report.name());
+        if let Some(also) = self.also {
+            w.s("also", also);
+        }
+        match *self.report {
+            Report::LoopBack { byte } => w.u("byte", byte),
+            Report::Digital { pin, value } => {
+                w.u("pin", pin);
+                w.level("value", value);
+            }
+            Report::Analog { pin, value } => {
+                w.u("pin", pin);
+                w.u("value", value);
+            }
+            Report::FirmwareVersion { major, minor } => {
+                w.u("major", major);
+                w.u("minor", minor);
+            }
+            Report::UniqueId { ref id } => w.bytes("id", id),
+            Report::I2cWrite {
+                port,
+                msg_id,
+                result,
+            } => {
+                w.u("port", port);
+                w.u("msg_id", msg_id);
+                w.i("result", result);
+            }
+            Report::I2cWriteFailed { port, addr, stale }
+            | Report::I2cReadFailed { port, addr, stale } => {
+                w.u("port", port);
+                w.u("addr", addr);
+                w.u("stale", stale);
+            }
+            Report::I2cRead {
+                port,
+                msg_id,
+                reg,
+                data,
+            } => {
+                w.u("port", port);
+                w.u("msg_id", msg_id);
+                w.u("reg", reg);
+                w.bytes("data", data);
+            }
+            Report::I2cReadUpstream {
+                port,
+                addr,
+                reg,
+                data,
+            } => {
+                w.u("port", port);
+                w.u("addr", addr);
+                w.u("reg", reg);
+                w.bytes("data", data);
+            }
+            Report::Sonar(sonar) => match sonar {
+                Sonar::WithEcho { trig, echo, cm } => {
+                    w.u("trig", trig);
+                    w.u("echo", echo);
+                    sonar_cm(w, cm);
+                }
+                Sonar::TrigOnly { trig, cm } => {
+                    w.u("trig", trig);
+                    sonar_cm(w, cm);
+                }
+                Sonar::MetresCm { trig, m, cm } => {
+                    w.u("trig", trig);
+                    w.u("m", m);
+                    w.u("cm", cm);
+                }
+                Sonar::CmHundredths {
+                    trig,
+                    cm,
+                    hundredths,
+                } => {
+                    w.u("trig", trig);
+                    w.u("cm", cm);
+                    w.u("hundredths", hundredths);
+                }
+            },
+            Report::Dht {
+                pin,
+                humidity,
+                humidity_hundredths,
+                temp,
+                temp_hundredths,
+            } => {
+                w.u("pin", pin);
+                w.u("hum_int", humidity);
+                w.u("hum_hundredths", humidity_hundredths);
+                w.i("temp_int", temp);
+                w.i("temp_hundredths", temp_hundredths);
+            }
+            Report::Spi { port, data } => {
+                w.u("port", port);
+                w.bytes("data", data);
+            }
+            Report::Encoder { pin, steps } => {
+                w.u("pin_a", pin);
+                w.i("steps", steps);
+            }
+            Report::Sensor {
+                sensor_num,
+                ref reading,
+            } => {
+                w.u("sensor_num", sensor_num);
+                w.s("sensor_type", reading.sensor_type().name());
+                w.obj("reading", reading);
+            }
+            Report::SensorSupported {
+                sensor_type,
+                supported,
+            } => {
+                w.type_byte("sensor_type", sensor_type, SensorType::NAMES);
+                w.flag("supported", supported);
+            }
+            Report::Pong { counter, boot_id } => {
+                w.u("counter", counter);
+                w.u("boot_id", boot_id);
+            }
+            Report::ModuleSupported {
+                module_type,
+                supported,
+            } => {
+                w.type_byte("module_type", module_type, ModuleType::NAMES);
+                w.flag("supported", supported);
+            }
+            Report::Module { module_num, report } => {
+                w.u("module_num", module_num);
+                w.s("module_type", report.module_type().name());
+                w.obj("message", &report);
+            }
+            Report::Id { id } | Report::IdSet { id } => w.u("id", id),
+            Report::Feature {
+                msg_type,
+                supported,
+                extras,
+            } => {
+                w.u("msg_type", msg_type);
+                w.flag("ok", supported);
+                w.bytes("extras", extras);
+            }
+            Report::Debug { id, value } => {
+                w.u("id", id);
+                w.u("value", value);
+            }
+            Report::Unknown { id, payload } => {
+                w.u("id", id);
+                w.bytes("payload", payload);
+            }
+        }
+    }
+}
+
+impl Visit for SensorReading {
+    fn visit(&self, o: &mut W<'_>) {
+        match *self {
+            SensorReading::Hx711 { raw } => o.i("raw", raw),
+            SensorReading::Mpu9250 {
+                ref accel,
+                ref gyro,
+                ref mag,
+                ref quat,
+            } => {
+                o.v("accel", V::F32s(accel));
+                o.v("gyro", V::F32s(gyro));
+                o.v("mag", V::F32s(mag));
+                o.v("quat", V::F32s(quat));
+            }
+            SensorReading::Vl53l0x { mm } => o.u("mm", mm),
+            SensorReading::Veml6040 { r, g, b, w } => {
+                o.u("r", r);
+                o.u("g", g);
+                o.u("b", b);
+                o.u("w", w);
+            }
+            SensorReading::Adxl345 { ref accel } => o.v("accel", V::I16s(accel)),
+            SensorReading::Ina226 { volts, amps } => {
+                o.v("volts", V::F32(volts));
+                o.v("amps", V::F32(amps));
+            }
+            SensorReading::Hmc5883l { ref field } => o.v("field", V::F32s(field)),
+            SensorReading::As5600 { ref angles } => o.v("angles", V::U16s(angles)),
+            SensorReading::Mpu6050 {
+                ref accel,
+                ref gyro,
+                temp,
+            } => {
+                o.v("accel", V::I16s(accel));
+                o.v("gyro", V::I16s(gyro));
+                o.i("temp", temp);
+            }
+            SensorReading::Bno055 {
+                ref gyro,
+                ref mag,
+                ref accel,
+                ref quat,
+                temp,
+            } => {
+                o.v("gyro", V::F32s(gyro));
+                o.v("mag", V::F32s(mag));
+                o.v("accel", V::F32s(accel));
+                o.v("quat", V::F32s(quat));
+                o.i("temp", temp);
+            }
+        }
+    }
+}
+
+impl Visit for ModuleReport<'_> {
+    fn visit(&self, o: &mut W<'_>) {
+        match *self {
+            ModuleReport::HiwonderPositions(ref positions) => {
+                o.s("subtype", "positions");
+                o.objs("positions", positions);
+            }
+            ModuleReport::HiwonderIdVerify { bus_id, ok } => {
+                o.s("subtype", "id_verify");
+                o.u("bus_id", bus_id);
+                o.flag("ok", ok);
+            }
+            ModuleReport::HiwonderRange {
+                idx,
+                min_cdeg,
+                max_cdeg,
+            } => {
+                o.s("subtype", "range");
+                o.u("idx", idx);
+                o.u("min_cdeg", min_cdeg);
+                o.u("max_cdeg", max_cdeg);
+            }
+            ModuleReport::HiwonderOffset { idx, offset_cdeg } => {
+                o.s("subtype", "offset");
+                o.u("idx", idx);
+                o.i("offset_cdeg", offset_cdeg);
+            }
+            ModuleReport::HiwonderAdded { bus_id, idx } => {
+                o.s("subtype", "added");
+                o.u("bus_id", bus_id);
+                o.u("idx", idx);
+            }
+            ModuleReport::Ssd1306Done {
+                kind,
+                len,
+                display_x,
+                enabled,
+            } => {
+                o.s(
+                    "subtype",
+                    match kind {
+                        Ssd1306Done::Text => "text_done",
+                        Ssd1306Done::Binary => "binary_done",
+                    },
+                );
+                o.u("len", len);
+                o.u("display_x", display_x);
+                o.flag("enabled", enabled);
+            }
+            ModuleReport::Ssd1306Disabled { request_sub } => {
+                o.s("subtype", "disabled");
+                o.u("request_sub", request_sub);
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------- Display
+
+/// Write `value` for `Display`.
+fn write_value(f: &mut fmt::Formatter<'_>, value: V<'_>) -> fmt::Result {
+    fn list<T: fmt::Display>(f: &mut fmt::Formatter<'_>, items: &[T]) -> fmt::Result {
+        f.write_str("[")?;
+        for (i, item) in items.iter().enumerate() {
+            if i > 0 {
+                f.write_str(",")?;
+            }
+            write!(f, "{item}")?;
+        }
+        f.write_str("]")
+    }
+    match value {
+        V::U(v) => write!(f, "{v}"),
+        V::I(v) => write!(f, "{v}"),
+        V::Bool(v) => write!(f, "{v}"),
+        V::Str(v) => f.write_str(v),
+        V::F32(v) => write!(f, "{v}"),
+        V::Bytes(v) => list(f, v),
+        V::U16s(v) => list(f, v),
+        V::I16s(v) => list(f, v),
+        V::F32s(v) => list(f, v),
+        V::Latin1(v) => {
+            f.write_str("\"")?;
+            for &b in v {
+                write!(f, "{}", char::from(b).escape_debug())?;
+            }
+            f.write_str("\"")
+        }
+        V::Obj(o) => {
+            f.write_str("{")?;
+            write_fields(f, o, false)?;
+            f.write_str("}")
+        }
+        V::Objs(seq) => {
+            f.write_str("[")?;
+            let mut result = Ok(());
+            let mut first = true;
+            seq.visit_each(&mut |o| {
+                if result.is_ok() {
+                    if !first {
+                        result = f.write_str(",");
+                    }
+                    first = false;
+                    result = result
+                        .and_then(|()| f.write_str("{"))
+                        .and_then(|()| write_fields(f, o, false))
+                        .and_then(|()| f.write_str("}"));
+                }
+            });
+            result?;
+            f.write_str("]")
+        }
+    }
+}
+
+/// Write the fields of `o` as `k=v`, space-separated; a leading `type` as its
+/// bare value when `top`.
+fn write_fields(f: &mut fmt::Formatter<'_>, o: &dyn Visit, top: bool) -> fmt::Result {
+    let mut result = Ok(());
+    let mut first = true;
+    o.visit(&mut W(&mut |key, value| {
+        if result.is_err() {
+            return;
+        }
+        if !first {
+            result = f.write_str(" ");
+        }
+        let bare = first && top && key == "type";
+        first = false;
+        if !bare {
+            result = result.and_then(|()| write!(f, "{key}="));
+        }
+        result = result.and_then(|()| write_value(f, value));
+    }));
+    result
+}
+
+macro_rules! display_fields {
+    ($($ty:ty),*) => {$(
+        /// One line: the message's `type`, then its fields as `name=value`
+        /// (the JSON-lines schema's words).
+        impl fmt::Display for $ty {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write_fields(f, self, true)
+            }
+        }
+    )*};
+}
+
+display_fields!(
+    Command<'_>,
+    Report<'_>,
+    Message<'_>,
+    CommandBuf,
+    ReportBuf,
+    MessageBuf
+);

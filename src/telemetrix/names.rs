@@ -1,0 +1,306 @@
+//! The names of messages and enumerated values: snake case after the spec's
+//! names, the words of the JSON-lines schema, `Display` and `FromStr`. Each
+//! list exists here only.
+
+use core::fmt;
+use core::str::FromStr;
+
+use super::buf::Message;
+use super::command::{Command, EncoderKind, ModifyReporting, PinMode, Pull};
+use super::dialect::Dialect;
+use super::module::ModuleType;
+use super::report::Report;
+use super::sensor::SensorType;
+
+/// A name that is none of the names a type accepts (from `FromStr`).
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
+#[error("unknown {what} name; expected one of {expected}")]
+pub struct UnknownName {
+    /// What was being named (`"dialect"`, `"sensor type"`, …).
+    pub what: &'static str,
+    /// The accepted names, comma-separated.
+    pub expected: &'static str,
+}
+
+/// A name from `names`, or [`UnknownName`].
+fn lookup(
+    names: &[&str],
+    name: &str,
+    what: &'static str,
+    expected: &'static str,
+) -> Result<usize, UnknownName> {
+    names
+        .iter()
+        .position(|n| *n == name)
+        .ok_or(UnknownName { what, expected })
+}
+
+macro_rules! named {
+    ($ty:ty, $what:literal, $names:expr, $expected:literal, $all:expr) => {
+        impl $ty {
+            /// Every name, in wire-value order.
+            pub const NAMES: &'static [&'static str] = &$names;
+
+            /// The name (as `Display` writes it and `FromStr` reads it).
+            pub const fn name(self) -> &'static str {
+                Self::NAMES[self as usize]
+            }
+        }
+
+        impl fmt::Display for $ty {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str(self.name())
+            }
+        }
+
+        impl FromStr for $ty {
+            type Err = UnknownName;
+
+            fn from_str(s: &str) -> Result<Self, UnknownName> {
+                let i = lookup(Self::NAMES, s, $what, $expected)?;
+                $all.get(i).copied().ok_or(UnknownName {
+                    what: $what,
+                    expected: $expected,
+                })
+            }
+        }
+    };
+}
+
+named!(
+    Dialect,
+    "dialect",
+    ["mirte13", "mirte12", "upstream11"],
+    "mirte13, mirte12, upstream11",
+    Dialect::ALL
+);
+
+named!(
+    SensorType,
+    "sensor type",
+    [
+        "gps", "hx711", "mpu9250", "vl53l0x", "veml6040", "adxl345", "ina226", "hmc5883l",
+        "as5600", "mpu6050", "bno055",
+    ],
+    "gps, hx711, mpu9250, vl53l0x, veml6040, adxl345, ina226, hmc5883l, as5600, mpu6050, bno055",
+    SensorType::ALL
+);
+
+named!(
+    ModuleType,
+    "module type",
+    ["pca9685", "hiwonder_servo", "shutdown_relay", "ssd1306"],
+    "pca9685, hiwonder_servo, shutdown_relay, ssd1306",
+    ModuleType::ALL
+);
+
+named!(
+    EncoderKind,
+    "encoder kind",
+    ["single", "quadrature"],
+    "single, quadrature",
+    [EncoderKind::Single, EncoderKind::Quadrature]
+);
+
+impl ModuleType {
+    /// Every module type, in id order.
+    pub const ALL: [ModuleType; 4] = [
+        ModuleType::Pca9685,
+        ModuleType::HiwonderServo,
+        ModuleType::ShutdownRelay,
+        ModuleType::Ssd1306,
+    ];
+}
+
+impl PinMode {
+    /// The names of the modes (the schema's `mode`), in the order of
+    /// [`name`](Self::name)'s cases: wire modes 0, 3, 4, 1, 2, 5.
+    pub const NAMES: &'static [&'static str] = &[
+        "digital_input",
+        "digital_input_pull_up",
+        "digital_input_pull_down",
+        "digital_output",
+        "pwm_output",
+        "analog_input",
+    ];
+
+    /// The mode's name.
+    pub const fn name(&self) -> &'static str {
+        Self::NAMES[match self {
+            PinMode::DigitalInput {
+                pull: Pull::None, ..
+            } => 0,
+            PinMode::DigitalInput { pull: Pull::Up, .. } => 1,
+            PinMode::DigitalInput {
+                pull: Pull::Down, ..
+            } => 2,
+            PinMode::DigitalOutput => 3,
+            PinMode::PwmOutput => 4,
+            PinMode::AnalogInput { .. } => 5,
+        }]
+    }
+}
+
+impl ModifyReporting {
+    /// The names of the actions (the schema's `action`), by the wire's type
+    /// byte.
+    pub const NAMES: &'static [&'static str] = &[
+        "disable_all",
+        "enable_analog",
+        "enable_digital",
+        "disable_analog",
+        "disable_digital",
+    ];
+
+    /// The action's name.
+    pub const fn name(&self) -> &'static str {
+        Self::NAMES[match self {
+            ModifyReporting::DisableAll => 0,
+            ModifyReporting::EnableAnalog { .. } => 1,
+            ModifyReporting::EnableDigital { .. } => 2,
+            ModifyReporting::DisableAnalog { .. } => 3,
+            ModifyReporting::DisableDigital { .. } => 4,
+        }]
+    }
+}
+
+impl Command<'_> {
+    /// Every command `type`, in id order (ids 0..=38). The command with id
+    /// 37 is `feature_request` (the report is `feature_check`), so that
+    /// every name names one direction.
+    pub const NAMES: &'static [&'static str] = &[
+        "serial_loop_back",
+        "set_pin_mode",
+        "digital_write",
+        "pwm_write",
+        "modify_reporting",
+        "get_firmware_version",
+        "get_pico_unique_id",
+        "servo_attach",
+        "servo_write",
+        "servo_detach",
+        "i2c_begin",
+        "i2c_read",
+        "i2c_write",
+        "sonar_new",
+        "dht_new",
+        "stop_all_reports",
+        "enable_all_reports",
+        "reset_data",
+        "reset_board",
+        "initialize_neo_pixels",
+        "show_neo_pixels",
+        "set_neo_pixel",
+        "clear_all_neo_pixels",
+        "fill_neo_pixels",
+        "spi_init",
+        "spi_write_blocking",
+        "spi_read_blocking",
+        "spi_set_format",
+        "spi_cs_control",
+        "set_scan_delay",
+        "encoder_new",
+        "sensor_new",
+        "ping",
+        "module_new",
+        "module_data",
+        "get_id",
+        "set_id",
+        "feature_request",
+        "bootloader_reset",
+    ];
+
+    /// This command's `type`.
+    pub const fn name(&self) -> &'static str {
+        Self::NAMES[self.id() as usize]
+    }
+}
+
+impl Report<'_> {
+    /// Every report `type` (upstream's report 8 is `i2c_write_failed`);
+    /// `unknown_report` last, for a lenient framing's unknown ids.
+    pub const NAMES: &'static [&'static str] = &[
+        "serial_loop_back_report",
+        "digital_report",
+        "analog_report",
+        "firmware_version",
+        "pico_unique_id",
+        "i2c_write_report",
+        "i2c_write_failed",
+        "i2c_read_failed",
+        "i2c_read_report",
+        "sonar_distance",
+        "dht_report",
+        "spi_report",
+        "encoder_report",
+        "sensor_report",
+        "sensor_main_report",
+        "pong",
+        "module_main_report",
+        "module_report",
+        "get_id_report",
+        "set_id_report",
+        "feature_check",
+        "debug_print",
+        "unknown_report",
+    ];
+
+    /// This report's `type`.
+    pub const fn name(&self) -> &'static str {
+        Self::NAMES[match self {
+            Report::LoopBack { .. } => 0,
+            Report::Digital { .. } => 1,
+            Report::Analog { .. } => 2,
+            Report::FirmwareVersion { .. } => 3,
+            Report::UniqueId { .. } => 4,
+            Report::I2cWrite { .. } => 5,
+            Report::I2cWriteFailed { .. } => 6,
+            Report::I2cReadFailed { .. } => 7,
+            Report::I2cRead { .. } | Report::I2cReadUpstream { .. } => 8,
+            Report::Sonar(_) => 9,
+            Report::Dht { .. } => 10,
+            Report::Spi { .. } => 11,
+            Report::Encoder { .. } => 12,
+            Report::Sensor { .. } => 13,
+            Report::SensorSupported { .. } => 14,
+            Report::Pong { .. } => 15,
+            Report::ModuleSupported { .. } => 16,
+            Report::Module { .. } => 17,
+            Report::Id { .. } => 18,
+            Report::IdSet { .. } => 19,
+            Report::Feature { .. } => 20,
+            Report::Debug { .. } => 21,
+            Report::Unknown { .. } => 22,
+        }]
+    }
+}
+
+/// `a` then `b`, in a const context.
+const fn concat<const N: usize>(a: &[&'static str], b: &[&'static str]) -> [&'static str; N] {
+    let mut out = [""; N];
+    let mut i = 0;
+    while i < N {
+        out[i] = if i < a.len() { a[i] } else { b[i - a.len()] };
+        i += 1;
+    }
+    out
+}
+
+/// Every message `type`: the commands', then the reports'.
+const MESSAGE_NAMES: [&str; Command::NAMES.len() + Report::NAMES.len()] =
+    concat(Command::NAMES, Report::NAMES);
+
+impl Message<'_> {
+    /// Every message `type`: [`Command::NAMES`], then [`Report::NAMES`]. No
+    /// name is in both: a `type` says the direction.
+    pub const NAMES: &'static [&'static str] = &MESSAGE_NAMES;
+
+    /// This message's `type`.
+    pub const fn name(&self) -> &'static str {
+        match self {
+            Message::Command(c) => c.name(),
+            Message::Report(r) => r.name(),
+        }
+    }
+}
