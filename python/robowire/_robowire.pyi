@@ -3,13 +3,17 @@
 from collections.abc import Iterator, KeysView, ItemsView, Mapping, ValuesView
 from typing import Any, Union
 
+from typing_extensions import TypeAlias, disjoint_base, final
+
 from . import omnitiles as omnitiles, pixy2 as pixy2, telemetrix as telemetrix
 
+__all__ = ["Item", "StreamDecoder", "__version__", "omnitiles", "pixy2", "telemetrix"]
 __version__: str
 
-Bytes = Union[bytes, bytearray, memoryview]
+_Bytes: TypeAlias = Union[bytes, bytearray, memoryview]
 """What the decoders take: ``bytes``, ``bytearray`` or ``memoryview``."""
 
+@final
 class Item(Mapping[str, Any]):
     """A decoded item that builds its dict only when first read (``lazy=True``).
 
@@ -30,9 +34,10 @@ class Item(Mapping[str, Any]):
     def __iter__(self) -> Iterator[str]: ...
     def __len__(self) -> int: ...
 
-Decoded = Mapping[str, Any]
+_Decoded: TypeAlias = Mapping[str, Any]
 """A decoded item: a dict in the JSON-lines schema, or an :class:`Item`."""
 
+@disjoint_base
 class StreamDecoder:
     """The stream decoder every protocol's ``Decoder`` is.
 
@@ -42,13 +47,13 @@ class StreamDecoder:
     rejections: ``offset``, then ``error`` and its keys).
     """
 
-    def feed(self, data: Bytes, /) -> list[Decoded]:
+    def feed(self, data: _Bytes, /) -> list[_Decoded]:
         """Decode the next chunk; the items it completes, in stream order."""
-    def finish(self) -> list[Decoded]:
+    def finish(self) -> list[_Decoded]:
         """End of input: the items a buffered partial frame resolves to."""
     def clear(self) -> None:
         """Forget a buffered partial frame (its bytes count as skipped)."""
-    def _count(self, data: Bytes, /) -> int:
+    def _count(self, data: _Bytes, /) -> int:
         """Decode as :meth:`feed` does, building no items; the frames decoded."""
     @property
     def stats(self) -> dict[str, int]:

@@ -1,15 +1,18 @@
 """OmniTiles: host commands and tile telemetry (``a5``, id, payload, sum)."""
 
 from collections.abc import Iterable, Mapping
-from typing import Any, Literal, Optional, Union
+from typing import Any, Literal, Union
 
-from ._robowire import Bytes, Decoded, StreamDecoder
+from typing_extensions import Self, TypeAlias, final
 
-Source = Literal["tile", "host", "any"]
-Layouts = Union[str, Iterable[str], None]
+from ._robowire import StreamDecoder, _Bytes, _Decoded
+
+_Source: TypeAlias = Literal["tile", "host", "any"]
+_Layouts: TypeAlias = Union[str, Iterable[str], None]
 
 __all__ = ["Decoder", "DatagramDecoder", "encode"]
 
+@final
 class Decoder(StreamDecoder):
     """The OmniTiles stream decoder.
 
@@ -19,25 +22,26 @@ class Decoder(StreamDecoder):
     ``spi45``, ``auto`` (default: ``auto``, the four the SDK documents).
     """
 
-    def __init__(
-        self,
-        source: Source = "any",
-        layouts: Layouts = None,
+    def __new__(
+        cls,
+        source: _Source = "any",
+        layouts: _Layouts = None,
         errors: bool = False,
         lazy: bool = False,
-    ) -> None: ...
+    ) -> Self: ...
 
+@final
 class DatagramDecoder:
     """Decodes one whole datagram (a BLE notification or write, an SPI buffer) per call."""
 
-    def __init__(
-        self,
-        source: Source = "any",
-        layouts: Layouts = None,
+    def __new__(
+        cls,
+        source: _Source = "any",
+        layouts: _Layouts = None,
         errors: bool = False,
         lazy: bool = False,
-    ) -> None: ...
-    def decode(self, datagram: Bytes, /) -> list[Decoded]:
+    ) -> Self: ...
+    def decode(self, datagram: _Bytes, /) -> list[_Decoded]:
         """The items of one datagram, in order."""
     @property
     def stats(self) -> dict[str, int]: ...

@@ -3,12 +3,15 @@
 from collections.abc import Mapping
 from typing import Any, Literal
 
-from ._robowire import Bytes, Decoded, StreamDecoder
+from typing_extensions import Self, TypeAlias, final
 
-Source = Literal["host", "device", "any"]
+from ._robowire import StreamDecoder, _Bytes, _Decoded
+
+_Source: TypeAlias = Literal["host", "device", "any"]
 
 __all__ = ["Decoder", "encode"]
 
+@final
 class Decoder(StreamDecoder):
     """The Pixy2 stream decoder.
 
@@ -18,13 +21,13 @@ class Decoder(StreamDecoder):
     Pixy2 always answers.
     """
 
-    def __init__(
-        self,
-        source: Source = "any",
+    def __new__(
+        cls,
+        source: _Source = "any",
         checksum_only: bool = False,
         errors: bool = False,
         lazy: bool = False,
-    ) -> None: ...
+    ) -> Self: ...
 
 def encode(message: Mapping[str, Any], /) -> bytes:
     """The frame of one request or response (a dict in the JSON-lines schema).

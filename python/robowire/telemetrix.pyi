@@ -3,13 +3,16 @@
 from collections.abc import Mapping
 from typing import Any, Literal
 
-from ._robowire import Bytes, Decoded, StreamDecoder
+from typing_extensions import Self, TypeAlias, final
 
-Source = Literal["host", "pico", "any"]
-Dialect = Literal["mirte13", "mirte12", "upstream11"]
+from ._robowire import StreamDecoder, _Bytes, _Decoded
+
+_Source: TypeAlias = Literal["host", "pico", "any"]
+_Dialect: TypeAlias = Literal["mirte13", "mirte12", "upstream11"]
 
 __all__ = ["Decoder", "encode"]
 
+@final
 class Decoder(StreamDecoder):
     """The Telemetrix stream decoder.
 
@@ -20,16 +23,16 @@ class Decoder(StreamDecoder):
     ``unknown_report`` when a valid report follows directly.
     """
 
-    def __init__(
-        self,
-        source: Source = "any",
-        dialect: Dialect = "mirte13",
+    def __new__(
+        cls,
+        source: _Source = "any",
+        dialect: _Dialect = "mirte13",
         lenient: bool = False,
         errors: bool = False,
         lazy: bool = False,
-    ) -> None: ...
+    ) -> Self: ...
 
-def encode(message: Mapping[str, Any], /, dialect: Dialect = "mirte13") -> bytes:
+def encode(message: Mapping[str, Any], /, dialect: _Dialect = "mirte13") -> bytes:
     """The frame of one command or report (a dict in the JSON-lines schema) for ``dialect``.
 
     Raises ``ValueError`` naming the field and its range if it is invalid.

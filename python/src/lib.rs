@@ -11,6 +11,7 @@ mod item;
 mod omnitiles;
 mod pixy2;
 mod schema;
+mod telemetrix;
 
 use pyo3::prelude::*;
 
@@ -35,5 +36,6 @@ fn _robowire(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     add_submodule(m, &omnitiles::module(py)?)?;
     add_submodule(m, &pixy2::module(py)?)?;
+    add_submodule(m, &telemetrix::module(py)?)?;
     Ok(())
 }

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import inspect
 import random
 from collections.abc import Mapping
 from typing import Any
@@ -64,7 +65,11 @@ def test_classes_and_docs() -> None:
     assert omnitiles.Decoder.__module__ == "robowire.omnitiles"
     for function in (omnitiles.encode, pixy2.encode, telemetrix.encode):
         assert "ValueError" in (function.__doc__ or "")
-    assert "feed" in (robowire.StreamDecoder.feed.__doc__ or "")
+    assert "chunk" in (robowire.StreamDecoder.feed.__doc__ or "")
+    assert str(inspect.signature(omnitiles.Decoder)) == "(source='any', layouts=None, errors=False, lazy=False)"
+    assert str(inspect.signature(telemetrix.encode)) == "(message, /, dialect='mirte13')"
+    feed = inspect.signature(robowire.StreamDecoder.feed).parameters["data"]
+    assert feed.kind is inspect.Parameter.POSITIONAL_ONLY
     assert robowire.__version__
 
 
