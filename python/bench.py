@@ -33,6 +33,7 @@ Run from the repository root after installing the package::
 from __future__ import annotations
 
 import argparse
+import glob
 import math
 import os
 import platform
@@ -41,7 +42,17 @@ import sys
 import time
 from typing import Any, Callable
 
-from robowire import omnitiles, telemetrix
+# Run as a script, Python puts python/ first on sys.path, where the source
+# package has no compiled extension unless it was built in place
+# (maturin develop): then import the installed package instead.
+_HERE = os.path.dirname(os.path.abspath(__file__))
+_BUILT = glob.glob(os.path.join(_HERE, "robowire", "_robowire*.so")) + glob.glob(
+    os.path.join(_HERE, "robowire", "_robowire*.pyd")
+)
+if not _BUILT:
+    sys.path = [p for p in sys.path if os.path.abspath(p or os.curdir) != _HERE]
+
+from robowire import omnitiles, telemetrix  # noqa: E402
 
 CHUNK = 4096
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "data")
