@@ -66,7 +66,7 @@ def test_classes_and_docs() -> None:
     for function in (omnitiles.encode, pixy2.encode, telemetrix.encode):
         assert "ValueError" in (function.__doc__ or "")
     assert "chunk" in (robowire.StreamDecoder.feed.__doc__ or "")
-    assert omnitiles.Decoder.__text_signature__ == "(source='any', layouts=None, errors=False, lazy=False)"
+    assert omnitiles.Decoder.__text_signature__ == '(source="any", layouts=None, errors=False, lazy=False)'
     assert str(inspect.signature(telemetrix.encode)) == "(message, /, dialect='mirte13')"
     feed = inspect.signature(robowire.StreamDecoder.feed).parameters["data"]
     assert feed.kind is inspect.Parameter.POSITIONAL_ONLY
