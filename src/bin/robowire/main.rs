@@ -8,7 +8,6 @@
 
 mod driver;
 mod input;
-mod json;
 mod omnitiles;
 mod pixy2;
 mod telemetrix;

@@ -163,7 +163,7 @@ where
     // Every side's buffer is the same size.
     let decoder = StreamDecoder::<_, { omnitiles::BOTH_BUFFER }>::new(framing);
     let chunk = args.common.chunk as usize;
-    driver::decode_serde(decoder, source.as_mut(), chunk, &mut printer)
+    driver::decode_stream(decoder, source.as_mut(), chunk, &mut printer)
 }
 
 /// One datagram per line of hex. A line that is not valid hex is reported and
@@ -204,7 +204,7 @@ where
             continue;
         }
         for event in decoder.decode(&datagram) {
-            printer.serde_event::<Framing<S>>(event)?;
+            printer.event(event)?;
         }
     }
     let failure = (bad > 0).then(|| {
@@ -220,14 +220,13 @@ where
 /// Run `encode omnitiles`.
 pub fn encode(args: &EncodeArgs, out: &mut Output) -> Result<(), Failure> {
     let input = Input::open(args.common.input.as_deref())?;
-    driver::encode_serde(&OmniTiles, input, args.common.hex, out)
+    driver::encode_lines(&OmniTiles, input, args.common.hex, out)
 }
 
 /// The OmniTiles protocol as the tool sees it: a line is a [`Message`].
 pub struct OmniTiles;
 
 impl Schema for OmniTiles {
-    type Rules = Framing<Both>;
     type Line = Message;
 
     fn encode(&self, line: &Message, frame: &mut Vec<u8>) -> Result<(), String> {

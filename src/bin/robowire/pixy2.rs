@@ -7,10 +7,8 @@ use crate::input::{ByteSource, HexBytes, Input, RawBytes};
 use crate::Failure;
 use clap::{Args, ValueEnum};
 use robowire::pixy2::{
-    Both, Device, DeviceError, Envelope, Framing, Host, MessageBuf, Request, Response, Side,
-    BOTH_BUFFER, DEVICE_BUFFER, HOST_BUFFER, MAX_FRAME_LEN,
+    self, DeviceError, Envelope, Framing, MessageBuf, Request, Response, Side, MAX_FRAME_LEN,
 };
-use robowire::stream::StreamDecoder;
 use robowire::Encode;
 
 /// `names` joined by ", ", broken into lines of at most `width` characters,
@@ -157,24 +155,18 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     let chunk = args.common.chunk as usize;
     let only = args.checksum_only;
     match args.from {
-        Sender::Host => driver::decode_serde::<Framing<Device>, DEVICE_BUFFER>(
-            StreamDecoder::new(framing(only)),
-            source,
-            chunk,
-            &mut printer,
-        ),
-        Sender::Device => driver::decode_serde::<Framing<Host>, HOST_BUFFER>(
-            StreamDecoder::new(framing(only)),
-            source,
-            chunk,
-            &mut printer,
-        ),
-        Sender::Any => driver::decode_serde::<Framing<Both>, BOTH_BUFFER>(
-            StreamDecoder::new(framing(only)),
-            source,
-            chunk,
-            &mut printer,
-        ),
+        Sender::Host => {
+            let decoder = pixy2::DeviceDecoder::new(framing(only));
+            driver::decode_stream(decoder, source, chunk, &mut printer)
+        }
+        Sender::Device => {
+            let decoder = pixy2::HostDecoder::new(framing(only));
+            driver::decode_stream(decoder, source, chunk, &mut printer)
+        }
+        Sender::Any => {
+            let decoder = pixy2::BothDecoder::new(framing(only));
+            driver::decode_stream(decoder, source, chunk, &mut printer)
+        }
     }
 }
 
@@ -189,7 +181,7 @@ fn framing<S: Side>(checksum_only: bool) -> Framing<S> {
 /// Run `encode pixy2`.
 pub fn encode(args: &EncodeArgs, out: &mut Output) -> Result<(), Failure> {
     let input = Input::open(args.common.input.as_deref())?;
-    driver::encode_serde(&Pixy2, input, args.common.hex, out)
+    driver::encode_lines(&Pixy2, input, args.common.hex, out)
 }
 
 /// The Pixy2 protocol as the tool encodes it. Encoding does not depend on the
@@ -197,7 +189,6 @@ pub fn encode(args: &EncodeArgs, out: &mut Output) -> Result<(), Failure> {
 pub struct Pixy2;
 
 impl Schema for Pixy2 {
-    type Rules = Framing<Both>;
     type Line = Envelope<MessageBuf>;
 
     fn encode(&self, line: &Self::Line, frame: &mut Vec<u8>) -> Result<(), String> {

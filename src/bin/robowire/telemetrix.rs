@@ -3,12 +3,12 @@
 //! and the `--from any` attribution are the library's
 //! ([`robowire::telemetrix`]).
 
-use crate::driver::{DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
+use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
 use crate::input::{ByteSource, HexBytes, Input, RawBytes};
 use crate::Failure;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
-use robowire::stream::{OwnedEvent, OwnedFrame, StreamDecoder};
+use robowire::stream::{OwnedFrame, StreamDecoder};
 use robowire::telemetrix::{
     Both, CaptureContext, Command, Device, Dialect, Framing, Host, MessageBuf, Report, Side,
     BOTH_BUFFER,
@@ -204,11 +204,10 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     }
 }
 
-/// [`driver::decode_stream`](crate::driver::decode_stream), with a
-/// [`CaptureContext`] between the decoder and the printer. The context
-/// depends only on the events in order, so the output still does not depend
-/// on `chunk`. Every side decodes with room for a lenient unknown report and
-/// the frame that must follow it.
+/// [`driver::decode_annotated`] with a [`CaptureContext`] between the decoder
+/// and the printer. The context depends only on the events in order, so the
+/// output still does not depend on `chunk`. Every side decodes with room for
+/// a lenient unknown report and the frame that must follow it.
 fn decode_stream<S: Side>(
     framing: Framing<S>,
     source: &mut dyn ByteSource,
@@ -219,9 +218,9 @@ where
     S::Owned: Into<MessageBuf>,
 {
     let mut context = CaptureContext::new(&framing);
-    let mut decoder = StreamDecoder::<Framing<S>, BOTH_BUFFER>::new(framing);
-    let mut print = |event: OwnedEvent<Framing<S>>, printer: &mut Printer<'_>| {
-        let event = event.map(|frame| {
+    let decoder = StreamDecoder::<Framing<S>, BOTH_BUFFER>::new(framing);
+    driver::decode_annotated(decoder, source, chunk, printer, |event| {
+        event.map(|frame| {
             let mut message: MessageBuf = frame.message.into();
             context.annotate(&mut message);
             OwnedFrame {
@@ -229,35 +228,7 @@ where
                 len: frame.len,
                 message,
             }
-        });
-        printer.serde_event::<Framing<Both>>(event)
-    };
-    let mut buf = vec![0u8; chunk];
-    loop {
-        let n = match source.fill(&mut buf) {
-            Ok(0) => break,
-            Ok(n) => n,
-            Err(failure) => {
-                return Ok(Decoded {
-                    stats: decoder.stats(),
-                    failure: Some(failure),
-                })
-            }
-        };
-        for event in decoder.feed(&buf[..n]) {
-            print(event, printer)?;
-        }
-        // Before a read that may wait, show what has been decoded so far.
-        if source.may_wait() {
-            printer.flush()?;
-        }
-    }
-    for event in decoder.flush() {
-        print(event, printer)?;
-    }
-    Ok(Decoded {
-        stats: decoder.stats(),
-        failure: None,
+        })
     })
 }
 
@@ -267,7 +238,7 @@ pub fn encode(args: &EncodeArgs, out: &mut Output) -> Result<(), Failure> {
     let protocol = Telemetrix {
         dialect: args.dialect,
     };
-    crate::driver::encode_serde(&protocol, input, args.common.hex, out)
+    driver::encode_lines(&protocol, input, args.common.hex, out)
 }
 
 /// Telemetrix as the tool encodes it: lines are read for `dialect` (which
@@ -277,7 +248,6 @@ pub struct Telemetrix {
 }
 
 impl Schema for Telemetrix {
-    type Rules = Framing<Both>;
     type Line = serde_json::Value;
 
     fn encode(&self, line: &serde_json::Value, frame: &mut Vec<u8>) -> Result<(), String> {
