@@ -203,6 +203,51 @@ where
     })
 }
 
+/// `words` joined by spaces in lines of at most `width` characters, the first
+/// line starting at column `first`, the others indented by `indent` spaces
+/// (the lists of names in the help texts).
+pub fn wrap<W: AsRef<str>>(
+    words: impl IntoIterator<Item = W>,
+    first: usize,
+    indent: usize,
+    width: usize,
+) -> String {
+    let mut text = String::new();
+    let mut column = first;
+    for (i, word) in words.into_iter().enumerate() {
+        let word = word.as_ref();
+        if i > 0 {
+            if column + 1 + word.len() > width {
+                text.push('\n');
+                text.push_str(&" ".repeat(indent));
+                column = indent;
+            } else {
+                text.push(' ');
+                column += 1;
+            }
+        }
+        text.push_str(word);
+        column += word.len();
+    }
+    text
+}
+
+/// `names` punctuated as a list: a comma after each but the last, which gets
+/// `last` before it (`"or "`) and `end` after it.
+pub fn listed<'n>(
+    names: &'n [&str],
+    last: &'n str,
+    end: &'n str,
+) -> impl Iterator<Item = String> + 'n {
+    names.iter().enumerate().map(move |(i, name)| {
+        if i + 1 == names.len() {
+            format!("{last}{name}{end}")
+        } else {
+            format!("{name},")
+        }
+    })
+}
+
 /// The one-line summary printed on stderr at the end of a decode.
 pub fn summary(stats: &Stats) -> String {
     format!("robowire: {stats}")

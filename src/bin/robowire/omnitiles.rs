@@ -14,7 +14,7 @@ use serde::Serialize;
 
 /// The JSON schema, printed by `--help` after the options.
 fn decode_help() -> String {
-    let types = wrap(&Message::NAMES, 10, 78);
+    let types = driver::wrap(driver::listed(&Message::NAMES, "or ", ""), 10, 10, 78);
     let layouts = Layout::ALL.map(Layout::name).join(", ");
     format!(
         "\
@@ -49,32 +49,6 @@ Examples:
   robowire decode omnitiles --datagrams tests/data/ble_notifications.hex
   echo 'a5 30 c8 f8' | robowire decode omnitiles --hex"
     )
-}
-
-/// `names` separated by commas, the last by "or", in lines of at most
-/// `width` characters, continuation lines indented by `indent`.
-fn wrap(names: &[&str], indent: usize, width: usize) -> String {
-    let mut text = String::new();
-    let mut column = indent;
-    for (i, name) in names.iter().enumerate() {
-        let word = match i {
-            _ if i + 1 == names.len() => format!("or {name}"),
-            _ => format!("{name},"),
-        };
-        if i > 0 {
-            if column + 1 + word.len() > width {
-                text.push('\n');
-                text.push_str(&" ".repeat(indent));
-                column = indent;
-            } else {
-                text.push(' ');
-                column += 1;
-            }
-        }
-        text.push_str(&word);
-        column += word.len();
-    }
-    text
 }
 
 const ENCODE_SCHEMA: &str = "\

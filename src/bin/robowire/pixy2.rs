@@ -11,36 +11,12 @@ use robowire::pixy2::{
 };
 use robowire::Encode;
 
-/// `names` joined by ", ", broken into lines of at most `width` characters,
-/// every line after the first indented by `indent` spaces.
-fn wrap(names: &[&str], first: usize, width: usize, indent: usize) -> String {
-    let mut out = String::new();
-    let mut col = first;
-    for (i, name) in names.iter().enumerate() {
-        let sep = if i + 1 == names.len() { "" } else { "," };
-        let word = format!("{name}{sep}");
-        if i > 0 {
-            if col + 1 + word.len() > width {
-                out.push('\n');
-                out.push_str(&" ".repeat(indent));
-                col = indent;
-            } else {
-                out.push(' ');
-                col += 1;
-            }
-        }
-        out.push_str(&word);
-        col += word.len();
-    }
-    out
-}
-
 /// The JSON schema, printed by `--help` after the options; the type and
 /// device error names come from the library.
 fn decode_schema() -> String {
-    let requests = wrap(&Request::NAMES, 22, 80, 12);
-    let responses = wrap(&Response::NAMES, 23, 80, 12);
-    let codes = wrap(&DeviceError::NAMES, 49, 70, 2);
+    let requests = driver::wrap(driver::listed(&Request::NAMES, "", ""), 22, 12, 80);
+    let responses = driver::wrap(driver::listed(&Response::NAMES, "", ""), 23, 12, 80);
+    let codes = driver::wrap(driver::listed(&DeviceError::NAMES, "", ""), 49, 2, 70);
     format!(
         "\
 Output: one JSON object per line, per frame, in input order:
