@@ -3,7 +3,7 @@
 //! the end-of-run summary, and the encode loop over JSON lines. A protocol
 //! plugs in by implementing [`Schema`]; it writes no per-message code.
 
-use crate::input::{ByteSource, Input, Lines};
+use crate::input::{ByteSource, HexBytes, Input, Lines, RawBytes};
 use crate::Failure;
 use clap::Args;
 use robowire::stream::{FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats, StreamDecoder};
@@ -53,6 +53,23 @@ pub struct DecodeCommon {
     #[arg(value_name = "INPUT")]
     pub input: Option<PathBuf>,
 }
+
+impl DecodeCommon {
+    /// The input, as raw bytes or (with `--hex`) hex text.
+    pub fn source(&self) -> Result<Box<dyn ByteSource>, Failure> {
+        let input = Input::open(self.input.as_deref())?;
+        Ok(if self.hex {
+            Box::new(HexBytes::new(input))
+        } else {
+            Box::new(RawBytes(input))
+        })
+    }
+}
+
+/// The end of every decode help text: the summary and the exit status.
+pub const DECODE_FOOTER: &str = "\
+Exit status: 0 on success, 2 on usage errors and invalid input (bad hex),
+1 on I/O errors. A closed stdout pipe ends the run quietly.";
 
 /// Options every `encode` subcommand shares.
 #[derive(Debug, Args)]
@@ -253,19 +270,19 @@ pub fn summary(stats: &Stats) -> String {
     format!("robowire: {stats}")
 }
 
-/// Encode every JSON line of `input` with `protocol`, writing raw bytes or,
-/// with `hex`, one line of hex per frame. A malformed line is reported on
+/// Encode every JSON line of the input with `protocol`, writing raw bytes or,
+/// with `--hex`, one line of hex per frame. A malformed line is reported on
 /// stderr with its number, nothing is written for it, and the run goes on;
 /// the result is then [`Failure::Reported`]. Blank lines and diagnostic
 /// events (objects with `error` and no `type`, as `decode --errors` prints
 /// them) are skipped.
 pub fn encode_lines<P: Schema>(
     protocol: &P,
-    input: Input,
-    hex: bool,
+    args: &EncodeCommon,
     out: &mut Output,
 ) -> Result<(), Failure> {
-    let mut lines = Lines::new(input);
+    let hex = args.hex;
+    let mut lines = Lines::new(Input::open(args.input.as_deref())?);
     let mut frame = Vec::new();
     let mut text = Vec::new();
     let mut bad = 0u64;

@@ -3,7 +3,7 @@
 //! and read through the library's serde form.
 
 use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
-use crate::input::{hex_line, ByteSource, HexBytes, Input, Lines, RawBytes};
+use crate::input::{hex_line, Input, Lines};
 use crate::Failure;
 use clap::{Args, ValueEnum};
 use robowire::omnitiles::{
@@ -14,6 +14,7 @@ use serde::Serialize;
 
 /// The JSON schema, printed by `--help` after the options.
 fn decode_help() -> String {
+    let footer = driver::DECODE_FOOTER;
     let types = driver::wrap(driver::listed(&Message::NAMES, "or ", ""), 10, 10, 78);
     let layouts = Layout::ALL.map(Layout::name).join(", ");
     format!(
@@ -40,8 +41,7 @@ With --errors, rejected candidates are objects with offset and error (no type):
 At the end, one summary line goes to stderr (frames, bytes, bytes skipped,
 checksum failures, other rejections).
 
-Exit status: 0 on success, 2 on usage errors and invalid input (bad hex),
-1 on I/O errors. A closed stdout pipe ends the run quietly.
+{footer}
 
 Examples:
   robowire decode omnitiles tests/data/ble_telemetry.bin
@@ -124,16 +124,13 @@ fn run<S>(args: &DecodeArgs, framing: Framing<S>, out: &mut Output) -> Result<De
 where
     S: omnitiles::Side<Message: Serialize>,
 {
-    let input = Input::open(args.common.input.as_deref())?;
-    let mut printer = Printer::new(out, args.common.errors);
     if args.datagrams {
+        let input = Input::open(args.common.input.as_deref())?;
+        let mut printer = Printer::new(out, args.common.errors);
         return decode_datagrams(DatagramDecoder::new(framing), input, &mut printer);
     }
-    let mut source: Box<dyn ByteSource> = if args.common.hex {
-        Box::new(HexBytes::new(input))
-    } else {
-        Box::new(RawBytes(input))
-    };
+    let mut source = args.common.source()?;
+    let mut printer = Printer::new(out, args.common.errors);
     // Every side's buffer is the same size.
     let decoder = StreamDecoder::<_, { omnitiles::BOTH_BUFFER }>::new(framing);
     let chunk = args.common.chunk as usize;
@@ -193,8 +190,7 @@ where
 
 /// Run `encode omnitiles`.
 pub fn encode(args: &EncodeArgs, out: &mut Output) -> Result<(), Failure> {
-    let input = Input::open(args.common.input.as_deref())?;
-    driver::encode_lines(&OmniTiles, input, args.common.hex, out)
+    driver::encode_lines(&OmniTiles, &args.common, out)
 }
 
 /// The OmniTiles protocol as the tool sees it: a line is a [`Message`].

@@ -3,7 +3,6 @@
 //! the library's serde form (`robowire::pixy2`), which is the schema below.
 
 use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
-use crate::input::{ByteSource, HexBytes, Input, RawBytes};
 use crate::Failure;
 use clap::{Args, ValueEnum};
 use robowire::pixy2::{
@@ -14,6 +13,7 @@ use robowire::Encode;
 /// The JSON schema, printed by `--help` after the options; the type and
 /// device error names come from the library.
 fn decode_schema() -> String {
+    let footer = driver::DECODE_FOOTER;
     let requests = driver::wrap(driver::listed(&Request::NAMES, "", ""), 22, 12, 80);
     let responses = driver::wrap(driver::listed(&Response::NAMES, "", ""), 23, 12, 80);
     let codes = driver::wrap(driver::listed(&DeviceError::NAMES, "", ""), 49, 2, 70);
@@ -55,8 +55,7 @@ With --errors, rejected candidates are objects with offset and error (no type):
 At the end, one summary line goes to stderr (frames, bytes, bytes skipped,
 checksum failures, other rejections, malformed frames).
 
-Exit status: 0 on success, 2 on usage errors and invalid input (bad hex),
-1 on I/O errors. A closed stdout pipe ends the run quietly.
+{footer}
 
 Examples:
   robowire decode pixy2 --hex tests/data/pixy2_conversation.hex
@@ -120,13 +119,8 @@ pub struct EncodeArgs {
 
 /// Run `decode pixy2`.
 pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
-    let input = Input::open(args.common.input.as_deref())?;
+    let mut source = args.common.source()?;
     let mut printer = Printer::new(out, args.common.errors);
-    let mut source: Box<dyn ByteSource> = if args.common.hex {
-        Box::new(HexBytes::new(input))
-    } else {
-        Box::new(RawBytes(input))
-    };
     let source = source.as_mut();
     let chunk = args.common.chunk as usize;
     let only = args.checksum_only;
@@ -156,8 +150,7 @@ fn framing<S: Side>(checksum_only: bool) -> Framing<S> {
 
 /// Run `encode pixy2`.
 pub fn encode(args: &EncodeArgs, out: &mut Output) -> Result<(), Failure> {
-    let input = Input::open(args.common.input.as_deref())?;
-    driver::encode_lines(&Pixy2, input, args.common.hex, out)
+    driver::encode_lines(&Pixy2, &args.common, out)
 }
 
 /// The Pixy2 protocol as the tool encodes it. Encoding does not depend on the

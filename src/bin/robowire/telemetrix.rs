@@ -4,7 +4,7 @@
 //! ([`robowire::telemetrix`]).
 
 use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
-use crate::input::{ByteSource, HexBytes, Input, RawBytes};
+use crate::input::ByteSource;
 use crate::Failure;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
@@ -83,13 +83,13 @@ len_byte is the frame's LEN byte; field names what the firmware never sends.
 Every rejection costs one byte: decoding resumes at the next byte. At the end,
 one summary line goes to stderr.
 
-Exit status: 0 on success, 2 on usage errors and invalid input (bad hex),
-1 on I/O errors. A closed stdout pipe ends the run quietly.
+{footer}
 
 Examples:
   robowire decode telemetrix --from pico tests/data/telemetrix_reports.bin
   robowire decode telemetrix --from host --hex tests/data/telemetrix_commands.hex
   echo '03 05 01 03' | robowire decode telemetrix --hex",
+        footer = driver::DECODE_FOOTER,
         commands = name_list(Command::NAMES, "          "),
         reports = name_list(&Report::NAMES[..Report::NAMES.len() - 1], "          "),
         modes = paragraph(&format!(
@@ -183,13 +183,8 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
             "--lenient accepts unknown report ids, which --from host does not decode".to_owned(),
         ));
     }
-    let input = Input::open(args.common.input.as_deref())?;
+    let mut source = args.common.source()?;
     let mut printer = Printer::new(out, args.common.errors);
-    let mut source: Box<dyn ByteSource> = if args.common.hex {
-        Box::new(HexBytes::new(input))
-    } else {
-        Box::new(RawBytes(input))
-    };
     let chunk = args.common.chunk as usize;
     let source = source.as_mut();
     let (dialect, lenient) = (args.dialect, args.lenient);
@@ -241,11 +236,10 @@ where
 
 /// Run `encode telemetrix`.
 pub fn encode(args: &EncodeArgs, out: &mut Output) -> Result<(), Failure> {
-    let input = Input::open(args.common.input.as_deref())?;
     let protocol = Telemetrix {
         dialect: args.dialect,
     };
-    driver::encode_lines(&protocol, input, args.common.hex, out)
+    driver::encode_lines(&protocol, &args.common, out)
 }
 
 /// Telemetrix as the tool encodes it: lines are read for `dialect` (which
