@@ -50,6 +50,29 @@ pub fn parse(
     }
 }
 
+/// The whole `main` of a simulator that writes captures: read the command
+/// line, then write each `(file name, bytes)` that `captures` makes into the
+/// directory asked for.
+#[allow(dead_code)] // pixy2_sim writes one file of its own
+pub fn write_captures<E: std::error::Error + 'static>(
+    usage: &str,
+    captures: impl FnOnce() -> Result<Vec<(&'static str, Vec<u8>)>, E>,
+) -> Result<ExitCode, Box<dyn std::error::Error>> {
+    let dir = match parse(std::env::args_os().skip(1), usage, true) {
+        Request::Write(dir) => dir,
+        Request::TestsData => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data"),
+        Request::Nothing => return Ok(ExitCode::from(2)),
+        Request::Exit(code) => return Ok(code),
+    };
+    std::fs::create_dir_all(&dir)?;
+    for (name, bytes) in captures()? {
+        let path = dir.join(name);
+        std::fs::write(&path, &bytes)?;
+        println!("{} ({} bytes)", path.display(), bytes.len());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

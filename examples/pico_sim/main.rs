@@ -18,7 +18,6 @@ mod sim;
 #[path = "../common/sim_args.rs"]
 mod sim_args;
 
-use std::path::PathBuf;
 use std::process::ExitCode;
 
 const USAGE: &str = "\
@@ -30,19 +29,7 @@ Writes the seeded sample captures into OUT_DIR (created if needed), or with
 only on the seeds, so it is byte-identical on every run.";
 
 fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
-    let dir = match sim_args::parse(std::env::args_os().skip(1), USAGE, true) {
-        sim_args::Request::Write(dir) => dir,
-        sim_args::Request::TestsData => {
-            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data")
-        }
-        sim_args::Request::Nothing => return Ok(ExitCode::from(2)),
-        sim_args::Request::Exit(code) => return Ok(code),
-    };
-    std::fs::create_dir_all(&dir)?;
-    for capture in sim::captures()? {
-        let path = dir.join(capture.name);
-        std::fs::write(&path, &capture.bytes)?;
-        println!("{} ({} bytes)", path.display(), capture.bytes.len());
-    }
-    Ok(ExitCode::SUCCESS)
+    sim_args::write_captures(USAGE, || {
+        sim::captures().map(|captures| captures.into_iter().map(|c| (c.name, c.bytes)).collect())
+    })
 }

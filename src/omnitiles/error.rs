@@ -69,8 +69,9 @@ pub enum Error {
 /// [`Motor`](super::Motor) has it.
 ///
 /// ```
+/// use core::str::FromStr;
 /// use robowire::omnitiles::Layout;
-/// let err = "ble52".parse::<Layout>().unwrap_err();
+/// let err = Layout::from_str("ble52").unwrap_err();
 /// assert_eq!(err.to_string(), "unknown layout (expected pos7, uwb15, uwbtof17, spi45 or ble53)");
 /// ```
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]

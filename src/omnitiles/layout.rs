@@ -136,13 +136,14 @@ impl FromStr for Layout {
 /// `none` for the empty set (which `FromStr` also reads).
 ///
 /// ```
+/// use core::str::FromStr;
 /// use robowire::omnitiles::{Layout, Layouts};
-/// let layouts: Layouts = "auto,spi45".parse().unwrap();
+/// let layouts = Layouts::from_str("auto,spi45").unwrap();
 /// assert_eq!(layouts, Layouts::ALL);
 /// assert_eq!(layouts.to_string(), "auto,spi45");
 /// assert_eq!("ble53,pos7".parse(), Ok(Layouts::only(Layout::Pos7).with(Layout::Ble53)));
 /// assert_eq!(Layouts::only(Layout::Pos7).with(Layout::Ble53).to_string(), "pos7,ble53");
-/// assert!("ble52".parse::<Layouts>().is_err());
+/// assert!(Layouts::from_str("ble52").is_err());
 /// ```
 ///
 /// With the `serde` feature a set is written as a number, its bits (bit `i`

@@ -63,10 +63,6 @@ impl Value {
         }
     }
 
-    pub(crate) fn is_number(&self) -> bool {
-        matches!(self, Value::U64(_) | Value::I64(_) | Value::F64(_))
-    }
-
     pub(crate) fn as_str(&self) -> Option<&str> {
         match self {
             Value::Str(s) => Some(s),

@@ -1,36 +1,17 @@
 //! The protocol-neutral part of the tool: the decode loop over any
-//! [`StreamDecoder`], JSON-lines output, the end-of-run summary, and the
-//! encode loop over JSON lines. A protocol plugs in by implementing
-//! [`Protocol`].
+//! [`StreamDecoder`], JSON-lines output through the library's `serde` form,
+//! the end-of-run summary, and the encode loop over JSON lines. A protocol
+//! plugs in by implementing [`Schema`]; it writes no per-message code.
 
-use crate::input::{ByteSource, Input, Lines};
-use crate::json::{Fields, JsonLine};
+use crate::input::{ByteSource, HexBytes, Input, Lines, RawBytes};
 use crate::Failure;
 use clap::Args;
-use robowire::stream::{FrameRules, OwnedEvent, Stats, StreamDecoder};
+use robowire::stream::{FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats, StreamDecoder};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 use serde_json::Value;
 use std::io::{self, BufWriter, StdoutLock, Write};
 use std::path::PathBuf;
-
-/// What a protocol supplies to the tool: how its messages and rejections are
-/// printed, and how a JSON line becomes a frame.
-pub trait Protocol {
-    /// The protocol's framing, as its stream decoder uses it.
-    type Framing: FrameRules;
-
-    /// Write `type` and the message's fields.
-    fn describe(message: &<Self::Framing as FrameRules>::Owned, line: &mut JsonLine);
-
-    /// Write `error` and the error's details.
-    fn describe_error(error: &<Self::Framing as FrameRules>::Error, line: &mut JsonLine);
-
-    /// Read one JSON object (a line that is not a diagnostic event) and
-    /// append the frame's bytes to `frame`. The error names the problem; the
-    /// caller adds the input's name and the line number.
-    fn encode(fields: Fields<'_>, frame: &mut Vec<u8>) -> Result<(), String>;
-}
 
 /// What a protocol supplies to the tool when its library types carry the
 /// JSON-lines schema (their `serde` form): the decoder's rules, what one input
@@ -38,10 +19,7 @@ pub trait Protocol {
 /// `Serialize` of [`OwnedFrame`](robowire::OwnedFrame) and
 /// [`Rejected`](robowire::Rejected); reading is the message's `Deserialize`,
 /// which validates as the encoder does.
-#[allow(dead_code)] // until every protocol reads and prints through its library schema
 pub trait Schema {
-    /// The decoder's rules; their messages and errors serialize to the schema.
-    type Rules: FrameRules<Owned: Serialize, Error: Serialize>;
     /// What one JSON line (that is not a diagnostic event) deserializes into.
     type Line: DeserializeOwned;
 
@@ -75,6 +53,23 @@ pub struct DecodeCommon {
     #[arg(value_name = "INPUT")]
     pub input: Option<PathBuf>,
 }
+
+impl DecodeCommon {
+    /// The input, as raw bytes or (with `--hex`) hex text.
+    pub fn source(&self) -> Result<Box<dyn ByteSource>, Failure> {
+        let input = Input::open(self.input.as_deref())?;
+        Ok(if self.hex {
+            Box::new(HexBytes::new(input))
+        } else {
+            Box::new(RawBytes(input))
+        })
+    }
+}
+
+/// The end of every decode help text: the summary and the exit status.
+pub const DECODE_FOOTER: &str = "\
+Exit status: 0 on success, 2 on usage errors and invalid input (bad hex),
+1 on I/O errors. A closed stdout pipe ends the run quietly.";
 
 /// Options every `encode` subcommand shares.
 #[derive(Debug, Args)]
@@ -111,11 +106,10 @@ impl Output {
     }
 }
 
-/// Prints decode events as JSON lines.
+/// Prints decode events as JSON lines: the library's `serde` form of
+/// [`OwnedFrame`] and [`Rejected`].
 pub struct Printer<'o> {
     out: &'o mut Output,
-    line: JsonLine,
-    #[allow(dead_code)] // until every protocol reads and prints through its library schema
     text: Vec<u8>,
     errors: bool,
 }
@@ -125,37 +119,15 @@ impl<'o> Printer<'o> {
     pub fn new(out: &'o mut Output, errors: bool) -> Self {
         Printer {
             out,
-            line: JsonLine::default(),
             text: Vec::with_capacity(256),
             errors,
         }
     }
 
     /// Print one event.
-    pub fn event<P: Protocol>(&mut self, event: OwnedEvent<P::Framing>) -> Result<(), Failure> {
-        let line = &mut self.line;
-        match event {
-            Ok(frame) => {
-                line.begin();
-                line.field("offset", frame.offset);
-                line.field("len", frame.len);
-                P::describe(&frame.message, line);
-            }
-            Err(rejected) if self.errors => {
-                line.begin();
-                line.field("offset", rejected.offset);
-                P::describe_error(&rejected.error, line);
-            }
-            Err(_) => return Ok(()),
-        }
-        self.out.write(line.end())
-    }
-
-    /// Print one event in the library's serde form.
-    #[allow(dead_code)] // until every protocol reads and prints through its library schema
-    pub fn serde_event<R: FrameRules<Owned: Serialize, Error: Serialize>>(
+    pub fn event<M: Serialize, E: Serialize>(
         &mut self,
-        event: OwnedEvent<R>,
+        event: Result<OwnedFrame<M>, Rejected<E>>,
     ) -> Result<(), Failure> {
         let buf = &mut self.text;
         buf.clear();
@@ -190,55 +162,34 @@ pub struct Decoded {
 }
 
 /// Decode everything `source` yields, `chunk` bytes at a time, then finish
-/// the stream; every event goes to `printer`. An input failure stops the
-/// decode (without finishing the stream: the input did not end) and comes
-/// back in [`Decoded::failure`]; an output failure is the error.
-#[allow(dead_code)] // no protocol prints through `Protocol` any more but Telemetrix's own loop
-pub fn decode_stream<P: Protocol, const N: usize>(
-    mut decoder: StreamDecoder<P::Framing, N>,
-    source: &mut dyn ByteSource,
-    chunk: usize,
-    printer: &mut Printer<'_>,
-) -> Result<Decoded, Failure> {
-    let mut buf = vec![0u8; chunk];
-    loop {
-        let n = match source.fill(&mut buf) {
-            Ok(0) => break,
-            Ok(n) => n,
-            Err(failure) => {
-                return Ok(Decoded {
-                    stats: decoder.stats(),
-                    failure: Some(failure),
-                })
-            }
-        };
-        for event in decoder.feed(&buf[..n]) {
-            printer.event::<P>(event)?;
-        }
-        // Before a read that may wait, show what has been decoded so far.
-        if source.may_wait() {
-            printer.flush()?;
-        }
-    }
-    for event in decoder.flush() {
-        printer.event::<P>(event)?;
-    }
-    Ok(Decoded {
-        stats: decoder.stats(),
-        failure: None,
-    })
-}
-
-/// [`decode_stream`] for a protocol whose types carry the schema ([`Schema`]).
-#[allow(dead_code)] // until every protocol reads and prints through its library schema
-pub fn decode_serde<R, const N: usize>(
-    mut decoder: StreamDecoder<R, N>,
+/// the stream, printing every event with `printer`.
+pub fn decode_stream<R, const N: usize>(
+    decoder: StreamDecoder<R, N>,
     source: &mut dyn ByteSource,
     chunk: usize,
     printer: &mut Printer<'_>,
 ) -> Result<Decoded, Failure>
 where
     R: FrameRules<Owned: Serialize, Error: Serialize>,
+{
+    decode_annotated(decoder, source, chunk, printer, |event| event)
+}
+
+/// [`decode_stream`], every event going through `annotate` (a protocol's
+/// context) on its way to `printer`. An input failure stops the decode (without
+/// finishing the stream: the input did not end) and comes back in
+/// [`Decoded::failure`]; an output failure is the error.
+pub fn decode_annotated<R, const N: usize, M, E>(
+    mut decoder: StreamDecoder<R, N>,
+    source: &mut dyn ByteSource,
+    chunk: usize,
+    printer: &mut Printer<'_>,
+    mut annotate: impl FnMut(OwnedEvent<R>) -> Result<OwnedFrame<M>, Rejected<E>>,
+) -> Result<Decoded, Failure>
+where
+    R: FrameRules,
+    M: Serialize,
+    E: Serialize,
 {
     let mut buf = vec![0u8; chunk];
     loop {
@@ -253,7 +204,7 @@ where
             }
         };
         for event in decoder.feed(&buf[..n]) {
-            printer.serde_event::<R>(event)?;
+            printer.event(annotate(event))?;
         }
         // Before a read that may wait, show what has been decoded so far.
         if source.may_wait() {
@@ -261,11 +212,56 @@ where
         }
     }
     for event in decoder.flush() {
-        printer.serde_event::<R>(event)?;
+        printer.event(annotate(event))?;
     }
     Ok(Decoded {
         stats: decoder.stats(),
         failure: None,
+    })
+}
+
+/// `words` joined by spaces in lines of at most `width` characters, the first
+/// line starting at column `first`, the others indented by `indent` spaces
+/// (the lists of names in the help texts).
+pub fn wrap<W: AsRef<str>>(
+    words: impl IntoIterator<Item = W>,
+    first: usize,
+    indent: usize,
+    width: usize,
+) -> String {
+    let mut text = String::new();
+    let mut column = first;
+    for (i, word) in words.into_iter().enumerate() {
+        let word = word.as_ref();
+        if i > 0 {
+            if column + 1 + word.len() > width {
+                text.push('\n');
+                text.push_str(&" ".repeat(indent));
+                column = indent;
+            } else {
+                text.push(' ');
+                column += 1;
+            }
+        }
+        text.push_str(word);
+        column += word.len();
+    }
+    text
+}
+
+/// `names` punctuated as a list: a comma after each but the last, which gets
+/// `last` before it (`"or "`) and `end` after it.
+pub fn listed<'n>(
+    names: &'n [&str],
+    last: &'n str,
+    end: &'n str,
+) -> impl Iterator<Item = String> + 'n {
+    names.iter().enumerate().map(move |(i, name)| {
+        if i + 1 == names.len() {
+            format!("{last}{name}{end}")
+        } else {
+            format!("{name},")
+        }
     })
 }
 
@@ -274,67 +270,19 @@ pub fn summary(stats: &Stats) -> String {
     format!("robowire: {stats}")
 }
 
-/// Encode every JSON line of `input` with protocol `P`, writing raw bytes or,
-/// with `hex`, one line of hex per frame. A malformed line is reported on
+/// Encode every JSON line of the input with `protocol`, writing raw bytes or,
+/// with `--hex`, one line of hex per frame. A malformed line is reported on
 /// stderr with its number, nothing is written for it, and the run goes on;
 /// the result is then [`Failure::Reported`]. Blank lines and diagnostic
 /// events (objects with `error` and no `type`, as `decode --errors` prints
 /// them) are skipped.
-pub fn encode_lines<P: Protocol>(input: Input, hex: bool, out: &mut Output) -> Result<(), Failure> {
-    let mut lines = Lines::new(input);
-    let mut frame = Vec::new();
-    let mut text = Vec::new();
-    let mut bad = 0u64;
-    loop {
-        // Flush before a read that may wait, so frames go out as lines arrive.
-        if !lines.has_buffered() {
-            out.flush()?;
-        }
-        let Some((number, line)) = lines.next_line()? else {
-            break;
-        };
-        if line.iter().all(u8::is_ascii_whitespace) {
-            continue;
-        }
-        frame.clear();
-        match encode_line::<P>(line, &mut frame) {
-            Ok(()) if frame.is_empty() => continue,
-            Ok(()) => {}
-            Err(message) => {
-                eprintln!("robowire: {}: line {number}: {message}", lines.name());
-                bad += 1;
-                continue;
-            }
-        }
-        if hex {
-            text.clear();
-            for (i, byte) in frame.iter().enumerate() {
-                let sep = if i == 0 { "" } else { " " };
-                // Writing into a Vec cannot fail.
-                let _ = write!(text, "{sep}{byte:02x}");
-            }
-            text.push(b'\n');
-            out.write(&text)?;
-        } else {
-            out.write(&frame)?;
-        }
-    }
-    if bad > 0 {
-        let s = if bad == 1 { "" } else { "s" };
-        return Err(Failure::Reported(format!("{bad} malformed line{s}")));
-    }
-    Ok(())
-}
-
-/// [`encode_lines`] for a protocol whose types carry the schema ([`Schema`]).
-#[allow(dead_code)] // until every protocol reads and prints through its library schema
-pub fn encode_serde<P: Schema>(
+pub fn encode_lines<P: Schema>(
     protocol: &P,
-    input: Input,
-    hex: bool,
+    args: &EncodeCommon,
     out: &mut Output,
 ) -> Result<(), Failure> {
-    let mut lines = Lines::new(input);
+    let hex = args.hex;
+    let mut lines = Lines::new(Input::open(args.input.as_deref())?);
     let mut frame = Vec::new();
     let mut text = Vec::new();
     let mut bad = 0u64;
@@ -383,7 +331,6 @@ pub fn encode_serde<P: Schema>(
 
 /// One JSON line read into `L`; `None` for a diagnostic event (an object with
 /// `error` and no `type`, as `decode --errors` prints them).
-#[allow(dead_code)] // until every protocol reads and prints through its library schema
 fn read_line<L: DeserializeOwned>(line: &[u8]) -> Result<Option<L>, String> {
     let value: Value = serde_json::from_slice(line).map_err(|e| format!("not valid JSON: {e}"))?;
     let map = value
@@ -395,17 +342,4 @@ fn read_line<L: DeserializeOwned>(line: &[u8]) -> Result<Option<L>, String> {
     serde_json::from_value(value)
         .map(Some)
         .map_err(|e| e.to_string())
-}
-
-/// One line: a frame appended to `frame`, nothing for a diagnostic event, or
-/// the reason it is malformed.
-fn encode_line<P: Protocol>(line: &[u8], frame: &mut Vec<u8>) -> Result<(), String> {
-    let value: Value = serde_json::from_slice(line).map_err(|e| format!("not valid JSON: {e}"))?;
-    let map = value
-        .as_object()
-        .ok_or_else(|| format!("expected a JSON object, found {value}"))?;
-    if !map.contains_key("type") && map.contains_key("error") {
-        return Ok(());
-    }
-    P::encode(Fields::new(map), frame)
 }

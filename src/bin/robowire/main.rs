@@ -2,13 +2,13 @@
 //! encode JSON lines back into frames.
 //!
 //! The protocol-neutral parts live in [`driver`] (decode and encode loops,
-//! output, summary), [`input`] (files, stdin, hex) and [`json`]; each protocol
-//! is one module implementing [`driver::Protocol`] plus its own options
-//! ([`omnitiles`]). Built only with the `cli` feature.
+//! output through the library's `serde` form, summary) and [`input`] (files,
+//! stdin, hex); each protocol is one module with its options, its choice of
+//! decoder and its help text, implementing [`driver::Schema`]. Built only
+//! with the `cli` feature.
 
 mod driver;
 mod input;
-mod json;
 mod omnitiles;
 mod pixy2;
 mod telemetrix;
@@ -144,24 +144,18 @@ enum Done {
 
 fn run(verb: &Verb, out: &mut driver::Output) -> Result<Done, Failure> {
     match verb {
-        Verb::Decode {
-            protocol: DecodeProtocol::Omnitiles(args),
-        } => omnitiles::decode(args, out).map(Done::Decoded),
-        Verb::Encode {
-            protocol: EncodeProtocol::Omnitiles(args),
-        } => omnitiles::encode(args, out).map(|()| Done::Encoded),
-        Verb::Decode {
-            protocol: DecodeProtocol::Telemetrix(args),
-        } => telemetrix::decode(args, out).map(Done::Decoded),
-        Verb::Encode {
-            protocol: EncodeProtocol::Telemetrix(args),
-        } => telemetrix::encode(args, out).map(|()| Done::Encoded),
-        Verb::Decode {
-            protocol: DecodeProtocol::Pixy2(args),
-        } => pixy2::decode(args, out).map(Done::Decoded),
-        Verb::Encode {
-            protocol: EncodeProtocol::Pixy2(args),
-        } => pixy2::encode(args, out).map(|()| Done::Encoded),
+        Verb::Decode { protocol } => match protocol {
+            DecodeProtocol::Omnitiles(args) => omnitiles::decode(args, out),
+            DecodeProtocol::Pixy2(args) => pixy2::decode(args, out),
+            DecodeProtocol::Telemetrix(args) => telemetrix::decode(args, out),
+        }
+        .map(Done::Decoded),
+        Verb::Encode { protocol } => match protocol {
+            EncodeProtocol::Omnitiles(args) => omnitiles::encode(args, out),
+            EncodeProtocol::Pixy2(args) => pixy2::encode(args, out),
+            EncodeProtocol::Telemetrix(args) => telemetrix::encode(args, out),
+        }
+        .map(|()| Done::Encoded),
     }
 }
 

@@ -3,7 +3,7 @@
 //! and read through the library's serde form.
 
 use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
-use crate::input::{hex_line, ByteSource, HexBytes, Input, Lines, RawBytes};
+use crate::input::{hex_line, Input, Lines};
 use crate::Failure;
 use clap::{Args, ValueEnum};
 use robowire::omnitiles::{
@@ -14,7 +14,8 @@ use serde::Serialize;
 
 /// The JSON schema, printed by `--help` after the options.
 fn decode_help() -> String {
-    let types = wrap(&Message::NAMES, 10, 78);
+    let footer = driver::DECODE_FOOTER;
+    let types = driver::wrap(driver::listed(&Message::NAMES, "or ", ""), 10, 10, 78);
     let layouts = Layout::ALL.map(Layout::name).join(", ");
     format!(
         "\
@@ -40,8 +41,7 @@ With --errors, rejected candidates are objects with offset and error (no type):
 At the end, one summary line goes to stderr (frames, bytes, bytes skipped,
 checksum failures, other rejections).
 
-Exit status: 0 on success, 2 on usage errors and invalid input (bad hex),
-1 on I/O errors. A closed stdout pipe ends the run quietly.
+{footer}
 
 Examples:
   robowire decode omnitiles tests/data/ble_telemetry.bin
@@ -49,32 +49,6 @@ Examples:
   robowire decode omnitiles --datagrams tests/data/ble_notifications.hex
   echo 'a5 30 c8 f8' | robowire decode omnitiles --hex"
     )
-}
-
-/// `names` separated by commas, the last by "or", in lines of at most
-/// `width` characters, continuation lines indented by `indent`.
-fn wrap(names: &[&str], indent: usize, width: usize) -> String {
-    let mut text = String::new();
-    let mut column = indent;
-    for (i, name) in names.iter().enumerate() {
-        let word = match i {
-            _ if i + 1 == names.len() => format!("or {name}"),
-            _ => format!("{name},"),
-        };
-        if i > 0 {
-            if column + 1 + word.len() > width {
-                text.push('\n');
-                text.push_str(&" ".repeat(indent));
-                column = indent;
-            } else {
-                text.push(' ');
-                column += 1;
-            }
-        }
-        text.push_str(&word);
-        column += word.len();
-    }
-    text
 }
 
 const ENCODE_SCHEMA: &str = "\
@@ -150,20 +124,17 @@ fn run<S>(args: &DecodeArgs, framing: Framing<S>, out: &mut Output) -> Result<De
 where
     S: omnitiles::Side<Message: Serialize>,
 {
-    let input = Input::open(args.common.input.as_deref())?;
-    let mut printer = Printer::new(out, args.common.errors);
     if args.datagrams {
+        let input = Input::open(args.common.input.as_deref())?;
+        let mut printer = Printer::new(out, args.common.errors);
         return decode_datagrams(DatagramDecoder::new(framing), input, &mut printer);
     }
-    let mut source: Box<dyn ByteSource> = if args.common.hex {
-        Box::new(HexBytes::new(input))
-    } else {
-        Box::new(RawBytes(input))
-    };
+    let mut source = args.common.source()?;
+    let mut printer = Printer::new(out, args.common.errors);
     // Every side's buffer is the same size.
     let decoder = StreamDecoder::<_, { omnitiles::BOTH_BUFFER }>::new(framing);
     let chunk = args.common.chunk as usize;
-    driver::decode_serde(decoder, source.as_mut(), chunk, &mut printer)
+    driver::decode_stream(decoder, source.as_mut(), chunk, &mut printer)
 }
 
 /// One datagram per line of hex. A line that is not valid hex is reported and
@@ -204,7 +175,7 @@ where
             continue;
         }
         for event in decoder.decode(&datagram) {
-            printer.serde_event::<Framing<S>>(event)?;
+            printer.event(event)?;
         }
     }
     let failure = (bad > 0).then(|| {
@@ -219,15 +190,13 @@ where
 
 /// Run `encode omnitiles`.
 pub fn encode(args: &EncodeArgs, out: &mut Output) -> Result<(), Failure> {
-    let input = Input::open(args.common.input.as_deref())?;
-    driver::encode_serde(&OmniTiles, input, args.common.hex, out)
+    driver::encode_lines(&OmniTiles, &args.common, out)
 }
 
 /// The OmniTiles protocol as the tool sees it: a line is a [`Message`].
 pub struct OmniTiles;
 
 impl Schema for OmniTiles {
-    type Rules = Framing<Both>;
     type Line = Message;
 
     fn encode(&self, line: &Message, frame: &mut Vec<u8>) -> Result<(), String> {

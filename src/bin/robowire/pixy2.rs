@@ -3,46 +3,20 @@
 //! the library's serde form (`robowire::pixy2`), which is the schema below.
 
 use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
-use crate::input::{ByteSource, HexBytes, Input, RawBytes};
 use crate::Failure;
 use clap::{Args, ValueEnum};
 use robowire::pixy2::{
-    Both, Device, DeviceError, Envelope, Framing, Host, MessageBuf, Request, Response, Side,
-    BOTH_BUFFER, DEVICE_BUFFER, HOST_BUFFER, MAX_FRAME_LEN,
+    self, DeviceError, Envelope, Framing, MessageBuf, Request, Response, Side, MAX_FRAME_LEN,
 };
-use robowire::stream::StreamDecoder;
 use robowire::Encode;
-
-/// `names` joined by ", ", broken into lines of at most `width` characters,
-/// every line after the first indented by `indent` spaces.
-fn wrap(names: &[&str], first: usize, width: usize, indent: usize) -> String {
-    let mut out = String::new();
-    let mut col = first;
-    for (i, name) in names.iter().enumerate() {
-        let sep = if i + 1 == names.len() { "" } else { "," };
-        let word = format!("{name}{sep}");
-        if i > 0 {
-            if col + 1 + word.len() > width {
-                out.push('\n');
-                out.push_str(&" ".repeat(indent));
-                col = indent;
-            } else {
-                out.push(' ');
-                col += 1;
-            }
-        }
-        out.push_str(&word);
-        col += word.len();
-    }
-    out
-}
 
 /// The JSON schema, printed by `--help` after the options; the type and
 /// device error names come from the library.
 fn decode_schema() -> String {
-    let requests = wrap(&Request::NAMES, 22, 80, 12);
-    let responses = wrap(&Response::NAMES, 23, 80, 12);
-    let codes = wrap(&DeviceError::NAMES, 49, 70, 2);
+    let footer = driver::DECODE_FOOTER;
+    let requests = driver::wrap(driver::listed(&Request::NAMES, "", ""), 22, 12, 80);
+    let responses = driver::wrap(driver::listed(&Response::NAMES, "", ""), 23, 12, 80);
+    let codes = driver::wrap(driver::listed(&DeviceError::NAMES, "", ""), 49, 2, 70);
     format!(
         "\
 Output: one JSON object per line, per frame, in input order:
@@ -81,8 +55,7 @@ With --errors, rejected candidates are objects with offset and error (no type):
 At the end, one summary line goes to stderr (frames, bytes, bytes skipped,
 checksum failures, other rejections, malformed frames).
 
-Exit status: 0 on success, 2 on usage errors and invalid input (bad hex),
-1 on I/O errors. A closed stdout pipe ends the run quietly.
+{footer}
 
 Examples:
   robowire decode pixy2 --hex tests/data/pixy2_conversation.hex
@@ -146,35 +119,24 @@ pub struct EncodeArgs {
 
 /// Run `decode pixy2`.
 pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
-    let input = Input::open(args.common.input.as_deref())?;
+    let mut source = args.common.source()?;
     let mut printer = Printer::new(out, args.common.errors);
-    let mut source: Box<dyn ByteSource> = if args.common.hex {
-        Box::new(HexBytes::new(input))
-    } else {
-        Box::new(RawBytes(input))
-    };
     let source = source.as_mut();
     let chunk = args.common.chunk as usize;
     let only = args.checksum_only;
     match args.from {
-        Sender::Host => driver::decode_serde::<Framing<Device>, DEVICE_BUFFER>(
-            StreamDecoder::new(framing(only)),
-            source,
-            chunk,
-            &mut printer,
-        ),
-        Sender::Device => driver::decode_serde::<Framing<Host>, HOST_BUFFER>(
-            StreamDecoder::new(framing(only)),
-            source,
-            chunk,
-            &mut printer,
-        ),
-        Sender::Any => driver::decode_serde::<Framing<Both>, BOTH_BUFFER>(
-            StreamDecoder::new(framing(only)),
-            source,
-            chunk,
-            &mut printer,
-        ),
+        Sender::Host => {
+            let decoder = pixy2::DeviceDecoder::new(framing(only));
+            driver::decode_stream(decoder, source, chunk, &mut printer)
+        }
+        Sender::Device => {
+            let decoder = pixy2::HostDecoder::new(framing(only));
+            driver::decode_stream(decoder, source, chunk, &mut printer)
+        }
+        Sender::Any => {
+            let decoder = pixy2::BothDecoder::new(framing(only));
+            driver::decode_stream(decoder, source, chunk, &mut printer)
+        }
     }
 }
 
@@ -188,8 +150,7 @@ fn framing<S: Side>(checksum_only: bool) -> Framing<S> {
 
 /// Run `encode pixy2`.
 pub fn encode(args: &EncodeArgs, out: &mut Output) -> Result<(), Failure> {
-    let input = Input::open(args.common.input.as_deref())?;
-    driver::encode_serde(&Pixy2, input, args.common.hex, out)
+    driver::encode_lines(&Pixy2, &args.common, out)
 }
 
 /// The Pixy2 protocol as the tool encodes it. Encoding does not depend on the
@@ -197,7 +158,6 @@ pub fn encode(args: &EncodeArgs, out: &mut Output) -> Result<(), Failure> {
 pub struct Pixy2;
 
 impl Schema for Pixy2 {
-    type Rules = Framing<Both>;
     type Line = Envelope<MessageBuf>;
 
     fn encode(&self, line: &Self::Line, frame: &mut Vec<u8>) -> Result<(), String> {

@@ -3,39 +3,34 @@
 //! and the `--from any` attribution are the library's
 //! ([`robowire::telemetrix`]).
 
-use crate::driver::{DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
-use crate::input::{ByteSource, HexBytes, Input, RawBytes};
+use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
+use crate::input::ByteSource;
 use crate::Failure;
-use clap::builder::{PossibleValuesParser, TypedValueParser};
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
-use robowire::stream::{OwnedEvent, OwnedFrame, StreamDecoder};
+use robowire::stream::{OwnedFrame, StreamDecoder};
 use robowire::telemetrix::{
-    Both, CaptureContext, Command, Device, Dialect, Framing, Host, MessageBuf, Report, Side,
-    BOTH_BUFFER,
+    Both, CaptureContext, Command, Device, Dialect, Framing, Host, MessageBuf, ModifyReporting,
+    ModuleType, PinMode, Report, SensorType, Side, BOTH_BUFFER,
 };
 
-/// `names` joined with `, ` and wrapped, each line indented.
+/// `names` as a list ending in a full stop, wrapped at 86 columns, every
+/// line indented by `indent`.
 fn name_list(names: &[&str], indent: &str) -> String {
-    let mut text = String::from(indent);
-    let mut column = indent.len();
-    for (i, name) in names.iter().enumerate() {
-        let mut item = (*name).to_owned();
-        if *name == "feature_request" {
-            item.push_str(" (id 37)");
-        }
-        item.push_str(if i + 1 == names.len() { "." } else { "," });
-        if column + 1 + item.len() > 86 {
-            text.push('\n');
-            text.push_str(indent);
-            column = indent.len();
-        } else if i > 0 {
-            text.push(' ');
-            column += 1;
-        }
-        column += item.len();
-        text.push_str(&item);
-    }
-    text
+    let words =
+        driver::listed(names, "", ".").map(|word| match word.strip_prefix("feature_request") {
+            Some(rest) => format!("feature_request (id 37){rest}"),
+            None => word,
+        });
+    format!(
+        "{indent}{}",
+        driver::wrap(words, indent.len(), indent.len(), 86)
+    )
+}
+
+/// `text` wrapped at 80 columns, indented by 2 and then 4 spaces.
+fn paragraph(text: &str) -> String {
+    format!("  {}", driver::wrap(text.split(' '), 2, 4, 80))
 }
 
 /// The JSON schema and the `--from any` rule, printed by `--help` after the
@@ -56,14 +51,12 @@ spec says so), byte strings as arrays of numbers (data, extras, cs_pins, ...),
 levels (value, level, cpol, cpha, active_level) as 0/1, flags (report_enable,
 auto_show, supported, ok, enabled, pulls.up/down) as true/false. Byte counts
 that a byte array already gives are not repeated; read lengths are `n`.
-  set_pin_mode mode: {modes};
-    modify_reporting action: {actions}.
+{modes}
   sonar_distance (mirte13): trig, echo (LEN 5 form only), cm: a number or
     \"no_echo\", \"out_of_range\", \"stale\"; mirte12: trig, m, cm; upstream11:
     trig, cm, hundredths. i2c_read and i2c_write carry msg_id except in
     upstream11; i2c_read_report carries msg_id, or addr in upstream11.
-  sensor_type and module_type are names ({sensors};
-    {modules}), or numbers where a check names an unknown type.
+{types}
   sensor_report: sensor_num, sensor_type, reading {{typed fields; floats read back
     as the same f32, \"inf\"/\"-inf\"/\"nan:0x...\" otherwise}}.
   module_report: module_num, module_type, message {{subtype, fields}}.
@@ -90,19 +83,26 @@ len_byte is the frame's LEN byte; field names what the firmware never sends.
 Every rejection costs one byte: decoding resumes at the next byte. At the end,
 one summary line goes to stderr.
 
-Exit status: 0 on success, 2 on usage errors and invalid input (bad hex),
-1 on I/O errors. A closed stdout pipe ends the run quietly.
+{footer}
 
 Examples:
   robowire decode telemetrix --from pico tests/data/telemetrix_reports.bin
   robowire decode telemetrix --from host --hex tests/data/telemetrix_commands.hex
   echo '03 05 01 03' | robowire decode telemetrix --hex",
+        footer = driver::DECODE_FOOTER,
         commands = name_list(Command::NAMES, "          "),
         reports = name_list(&Report::NAMES[..Report::NAMES.len() - 1], "          "),
-        modes = robowire::telemetrix::PinMode::NAMES.join(", "),
-        actions = robowire::telemetrix::ModifyReporting::NAMES.join(", "),
-        sensors = robowire::telemetrix::SensorType::NAMES.join(", "),
-        modules = robowire::telemetrix::ModuleType::NAMES.join(", "),
+        modes = paragraph(&format!(
+            "set_pin_mode mode: {}; modify_reporting action: {}.",
+            PinMode::NAMES.join(", "),
+            ModifyReporting::NAMES.join(", ")
+        )),
+        types = paragraph(&format!(
+            "sensor_type and module_type are names ({}; {}), or numbers where a check \
+             names an unknown type.",
+            SensorType::NAMES.join(", "),
+            ModuleType::NAMES.join(", ")
+        )),
     )
 }
 
@@ -134,7 +134,14 @@ pub enum From {
 
 /// `--dialect`: one of the library's dialect names.
 fn dialect_parser() -> impl TypedValueParser<Value = Dialect> {
-    PossibleValuesParser::new(Dialect::NAMES).try_map(|name| name.parse::<Dialect>())
+    let values = Dialect::ALL.map(|dialect| {
+        PossibleValue::new(dialect.name()).help(match dialect {
+            Dialect::Mirte13 => "mirte firmware 1.3 (ids 0..=38, sensors, modules)",
+            Dialect::Mirte12 => "mirte firmware 1.2",
+            Dialect::Upstream11 => "Upstream firmware 1.1 (ids 0..=28)",
+        })
+    });
+    PossibleValuesParser::new(values).try_map(|name| name.parse::<Dialect>())
 }
 
 /// `robowire decode telemetrix`.
@@ -176,13 +183,8 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
             "--lenient accepts unknown report ids, which --from host does not decode".to_owned(),
         ));
     }
-    let input = Input::open(args.common.input.as_deref())?;
+    let mut source = args.common.source()?;
     let mut printer = Printer::new(out, args.common.errors);
-    let mut source: Box<dyn ByteSource> = if args.common.hex {
-        Box::new(HexBytes::new(input))
-    } else {
-        Box::new(RawBytes(input))
-    };
     let chunk = args.common.chunk as usize;
     let source = source.as_mut();
     let (dialect, lenient) = (args.dialect, args.lenient);
@@ -204,11 +206,10 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     }
 }
 
-/// [`driver::decode_stream`](crate::driver::decode_stream), with a
-/// [`CaptureContext`] between the decoder and the printer. The context
-/// depends only on the events in order, so the output still does not depend
-/// on `chunk`. Every side decodes with room for a lenient unknown report and
-/// the frame that must follow it.
+/// [`driver::decode_annotated`] with a [`CaptureContext`] between the decoder
+/// and the printer. The context depends only on the events in order, so the
+/// output still does not depend on `chunk`. Every side decodes with room for
+/// a lenient unknown report and the frame that must follow it.
 fn decode_stream<S: Side>(
     framing: Framing<S>,
     source: &mut dyn ByteSource,
@@ -219,9 +220,9 @@ where
     S::Owned: Into<MessageBuf>,
 {
     let mut context = CaptureContext::new(&framing);
-    let mut decoder = StreamDecoder::<Framing<S>, BOTH_BUFFER>::new(framing);
-    let mut print = |event: OwnedEvent<Framing<S>>, printer: &mut Printer<'_>| {
-        let event = event.map(|frame| {
+    let decoder = StreamDecoder::<Framing<S>, BOTH_BUFFER>::new(framing);
+    driver::decode_annotated(decoder, source, chunk, printer, |event| {
+        event.map(|frame| {
             let mut message: MessageBuf = frame.message.into();
             context.annotate(&mut message);
             OwnedFrame {
@@ -229,45 +230,16 @@ where
                 len: frame.len,
                 message,
             }
-        });
-        printer.serde_event::<Framing<Both>>(event)
-    };
-    let mut buf = vec![0u8; chunk];
-    loop {
-        let n = match source.fill(&mut buf) {
-            Ok(0) => break,
-            Ok(n) => n,
-            Err(failure) => {
-                return Ok(Decoded {
-                    stats: decoder.stats(),
-                    failure: Some(failure),
-                })
-            }
-        };
-        for event in decoder.feed(&buf[..n]) {
-            print(event, printer)?;
-        }
-        // Before a read that may wait, show what has been decoded so far.
-        if source.may_wait() {
-            printer.flush()?;
-        }
-    }
-    for event in decoder.flush() {
-        print(event, printer)?;
-    }
-    Ok(Decoded {
-        stats: decoder.stats(),
-        failure: None,
+        })
     })
 }
 
 /// Run `encode telemetrix`.
 pub fn encode(args: &EncodeArgs, out: &mut Output) -> Result<(), Failure> {
-    let input = Input::open(args.common.input.as_deref())?;
     let protocol = Telemetrix {
         dialect: args.dialect,
     };
-    crate::driver::encode_serde(&protocol, input, args.common.hex, out)
+    driver::encode_lines(&protocol, &args.common, out)
 }
 
 /// Telemetrix as the tool encodes it: lines are read for `dialect` (which
@@ -277,7 +249,6 @@ pub struct Telemetrix {
 }
 
 impl Schema for Telemetrix {
-    type Rules = Framing<Both>;
     type Line = serde_json::Value;
 
     fn encode(&self, line: &serde_json::Value, frame: &mut Vec<u8>) -> Result<(), String> {
