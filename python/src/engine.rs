@@ -20,7 +20,8 @@ use crate::schema::Adapt;
 
 /// A stream decoder of any protocol, as the Python classes use it.
 pub trait Engine: Send + Sync {
-    /// Decode `data`, appending the events to `out` as `items` says. All of `data` is taken even if appending fails.
+    /// Decode `data`, appending the events to `out` as `items` says. All of
+    /// `data` is taken even if appending fails.
     fn feed(&mut self, data: &[u8], items: Items, out: &Bound<'_, PyList>) -> PyResult<()>;
     /// End of input: resolve what is buffered, appending the events to `out`.
     fn finish(&mut self, items: Items, out: &Bound<'_, PyList>) -> PyResult<()>;
