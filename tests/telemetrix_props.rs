@@ -5,7 +5,7 @@
 use proptest::prelude::*;
 use proptest::strategy::Union;
 use robowire::telemetrix::{
-    Command, Device, DeviceDecoder, Dialect, EncoderKind, Framing, HiwonderCommand, Host,
+    Command, CommandBuf, Device, DeviceDecoder, Dialect, EncoderKind, Framing, HiwonderCommand, Host,
     HostDecoder, LenientHostDecoder, List, ModifyReporting, ModuleCommand, ModuleInit, ModuleNew,
     ModuleReport, Pca9685Channel, Pca9685Command, Pca9685Config, PinMode, Pull, Pulls, PwmPin,
     RelayCommand, Report, Rgb, SensorNew, SensorReading, SensorType, ServoMove, ServoPositions,
@@ -665,26 +665,37 @@ proptest! {
         }
     }
 
-    /// bytes → message → bytes: every frame found in arbitrary input re-encodes
-    /// to exactly its bytes, in both directions and every dialect.
+    /// bytes → message → bytes: every frame found in arbitrary input keeps
+    /// its bytes, and re-encodes to exactly them unless it has a quirk (a
+    /// real peer's frame that robowire does not send), in both directions
+    /// and every dialect.
     #[test]
     fn decoded_frames_re_encode(d in dialect(), bytes in prop::collection::vec(any::<u8>(), 0..600)) {
         for (raw, c) in frames(DeviceDecoder::new(Framing::<Device>::new().with_dialect(d)), &bytes) {
+            prop_assert_eq!(c.frame(), &raw[..]);
+            if c.quirk().is_some() || CommandBuf::parse_in(&raw, d).unwrap().quirk().is_some() {
+                continue;
+            }
             let mut out = [0u8; 31];
             let n = c.message().encode_in(d, &mut out).unwrap();
-            prop_assert_eq!(c.frame(), &raw[..]);
             prop_assert_eq!(&out[..n], &raw[..]);
         }
         for (raw, r) in frames(HostDecoder::new(Framing::<Host>::new().with_dialect(d)), &bytes) {
+            prop_assert_eq!(r.frame(), &raw[..]);
+            if r.quirk().is_some() {
+                continue;
+            }
             let mut out = [0u8; 256];
             let n = r.message().encode_in(d, &mut out).unwrap();
-            prop_assert_eq!(r.frame(), &raw[..]);
             prop_assert_eq!(&out[..n], &raw[..]);
         }
         for (raw, r) in frames(LenientHostDecoder::new(Framing::<Host>::new().with_dialect(d).lenient()), &bytes) {
+            prop_assert_eq!(r.frame(), &raw[..]);
+            if r.quirk().is_some() {
+                continue;
+            }
             let mut out = [0u8; 256];
             let n = r.message().encode_in(d, &mut out).unwrap();
-            prop_assert_eq!(r.frame(), &raw[..]);
             prop_assert_eq!(&out[..n], &raw[..]);
         }
     }

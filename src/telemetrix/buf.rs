@@ -10,6 +10,7 @@ use super::command::{parse_command, Command};
 use super::dialect::Dialect;
 use super::error::Error;
 use super::module::{ModuleCommand, ModuleType};
+use super::quirk::{command_quirk, report_quirk, Quirk};
 use super::report::{parse_report_with, report_known, Report};
 use super::wire::{MAX_COMMAND_FRAME, MAX_FRAME_LEN, MAX_REPORT_FRAME};
 use crate::{Encode, EncodeError};
@@ -123,9 +124,31 @@ impl CommandBuf {
         Self { bytes, dialect }
     }
 
+    /// The owned form of `command`, parsed from `frame`: the frame's own
+    /// bytes (a quirky frame is kept as it was), valid in the first of the
+    /// command's home dialects that accepts them.
+    pub(crate) fn from_frame(frame: &[u8], command: &Command<'_>) -> Self {
+        match copy_frame(frame) {
+            Some(bytes) => Self {
+                bytes,
+                dialect: command_dialect(command, frame),
+            },
+            None => Self::from_parsed(command),
+        }
+    }
+
     /// The command.
     pub fn message(&self) -> Command<'_> {
         parse_command(self.dialect, self.frame()).unwrap_or(NO_COMMAND)
+    }
+
+    /// What is dubious in the frame read in [`dialect`](Self::dialect), if
+    /// anything: it came from a real host and the encoder would refuse it
+    /// (see [`Quirk`]). A decoder's owned form has the first of the
+    /// command's dialects that accepts the bytes, mirte 1.3 first; a
+    /// [`CaptureContext`](super::CaptureContext) sets the decoder's.
+    pub fn quirk(&self) -> Option<Quirk> {
+        command_quirk(self.dialect, self.frame())
     }
 
     /// The frame's bytes.
@@ -202,9 +225,31 @@ impl ReportBuf {
         }
     }
 
+    /// See [`CommandBuf::from_frame`].
+    pub(crate) fn from_frame(frame: &[u8], report: &Report<'_>) -> Self {
+        match copy_frame(frame) {
+            Some(bytes) => {
+                let (dialect, lenient) = report_dialect(report, frame);
+                Self {
+                    bytes,
+                    dialect,
+                    lenient,
+                }
+            }
+            None => Self::from_parsed(report),
+        }
+    }
+
     /// The report.
     pub fn message(&self) -> Report<'_> {
         parse_report_with(self.dialect, self.lenient, self.frame()).unwrap_or(NO_REPORT)
+    }
+
+    /// What is dubious in the frame read in [`dialect`](Self::dialect), if
+    /// anything: it came from a real Pico and the encoder would refuse it
+    /// (see [`Quirk`]).
+    pub fn quirk(&self) -> Option<Quirk> {
+        report_quirk(self.dialect, self.frame())
     }
 
     /// The frame's bytes.
@@ -311,6 +356,24 @@ impl MessageBuf {
         match self.direction {
             Direction::Command => Message::Command(self.command_reading().unwrap_or(NO_COMMAND)),
             Direction::Report => Message::Report(self.report_reading().unwrap_or(NO_REPORT)),
+        }
+    }
+
+    /// What is dubious in the frame read in its direction, if anything (see
+    /// [`Quirk`]).
+    pub fn quirk(&self) -> Option<Quirk> {
+        match self.direction {
+            Direction::Command => command_quirk(self.dialect, self.frame()),
+            Direction::Report => report_quirk(self.dialect, self.frame()),
+        }
+    }
+
+    /// The owned form of `message`, parsed from `frame`: the frame's own
+    /// bytes (see [`CommandBuf::from_frame`]).
+    pub(crate) fn from_frame(frame: &[u8], message: &Message<'_>) -> Self {
+        match message {
+            Message::Command(c) => CommandBuf::from_frame(frame, c).into(),
+            Message::Report(r) => ReportBuf::from_frame(frame, r).into(),
         }
     }
 

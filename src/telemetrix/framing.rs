@@ -37,6 +37,8 @@ pub trait Side: sealed::Sealed + Copy + Eq + core::hash::Hash + core::fmt::Debug
     fn parse(dialect: Dialect, lenient: bool, frame: &[u8]) -> Result<Self::Message<'_>, Error>;
     /// The owned form of a message.
     fn to_owned(message: Self::Message<'_>) -> Self::Owned;
+    /// The owned form of a message parsed from `frame`, keeping its bytes.
+    fn to_owned_from(frame: &[u8], message: Self::Message<'_>) -> Self::Owned;
 }
 
 impl Side for Host {
@@ -52,6 +54,10 @@ impl Side for Host {
     fn to_owned(message: Report<'_>) -> ReportBuf {
         ReportBuf::from_parsed(&message)
     }
+
+    fn to_owned_from(frame: &[u8], message: Report<'_>) -> ReportBuf {
+        ReportBuf::from_frame(frame, &message)
+    }
 }
 
 impl Side for Device {
@@ -66,6 +72,10 @@ impl Side for Device {
 
     fn to_owned(message: Command<'_>) -> CommandBuf {
         CommandBuf::from_parsed(&message)
+    }
+
+    fn to_owned_from(frame: &[u8], message: Command<'_>) -> CommandBuf {
+        CommandBuf::from_frame(frame, &message)
     }
 }
 
@@ -90,6 +100,10 @@ impl Side for Both {
 
     fn to_owned(message: Message<'_>) -> MessageBuf {
         MessageBuf::from(&message)
+    }
+
+    fn to_owned_from(frame: &[u8], message: Message<'_>) -> MessageBuf {
+        MessageBuf::from_frame(frame, &message)
     }
 }
 
@@ -315,6 +329,10 @@ impl<S: Side> stream::FrameRules for Framing<S> {
 
     fn to_owned(message: S::Message<'_>) -> S::Owned {
         S::to_owned(message)
+    }
+
+    fn to_owned_from(frame: &[u8], message: S::Message<'_>) -> S::Owned {
+        S::to_owned_from(frame, message)
     }
 }
 

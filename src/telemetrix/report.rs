@@ -3,6 +3,7 @@
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
 use super::module::{module_report_len_ok, ModuleReport};
+use super::quirk::report_quirk;
 use super::sensor::{SensorReading, SensorType};
 use super::wire::{analog_pin_ok, report_id, split_frame, Reader, Writer, MAX_REPORT_FRAME};
 use crate::encode::check_room;
@@ -505,6 +506,10 @@ impl Report<'_> {
         // The decoder is the one definition of a valid frame.
         let lenient = matches!(self, Report::Unknown { .. });
         parse_report_with(dialect, lenient, frame).map_err(Error::into_encode_error)?;
+        // ... nor anything it flags.
+        if let Some(quirk) = report_quirk(dialect, frame) {
+            return Err(quirk.into_encode_error());
+        }
         if let Some(dst) = out.get_mut(..n) {
             dst.copy_from_slice(frame);
         }

@@ -212,6 +212,14 @@ fn read_line(value: &Value, dialect: Dialect, want: Want) -> Result<MessageBuf, 
             ));
         }
     }
+    // A frame flagged with a quirk came from a real peer; the encoder
+    // refuses to send one.
+    if let Some(quirk) = fields.optional("quirk") {
+        return Err(format!(
+            "cannot encode {kind}: the decoder flagged its frame `{}`, which the encoder refuses",
+            quirk.as_str().unwrap_or("?")
+        ));
+    }
     let mut bytes = Vec::new();
     let encoded = if Command::NAMES.contains(&kind) && want != Want::Reports {
         let command = read_command(kind, &mut fields, dialect, &mut bytes)?;

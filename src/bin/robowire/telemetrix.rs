@@ -50,7 +50,10 @@ Then the fields, named after the spec: numbers as on the wire (signed where the
 spec says so), byte strings as arrays of numbers (data, extras, cs_pins, ...),
 levels (value, level, cpol, cpha, active_level) as 0/1, flags (report_enable,
 auto_show, supported, ok, enabled, pulls.up/down) as true/false. Byte counts
-that a byte array already gives are not repeated; read lengths are `n`.
+that a byte array already gives are not repeated; read lengths are `n`. A frame
+a real peer sends that robowire would not send (a level byte 2, mirte13's digital
+modify_reporting, ...) is decoded as the firmware reads it and ends with \"quirk\":
+its name; encode refuses such a line.
 {modes}
   sonar_distance (mirte13): trig, echo (LEN 5 form only), cm: a number or
     \"no_echo\", \"out_of_range\", \"stale\"; mirte12: trig, m, cm; upstream11:
