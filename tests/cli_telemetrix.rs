@@ -796,7 +796,7 @@ fn malformed_json_lines() {
         ),
         (
             r#"{"type":"digital_write","pin":30,"value":1}"#,
-            "cannot encode digital_write for mirte13: pin is out of range",
+            "field `pin` must be an integer 0..=29, found 30",
         ),
         (
             r#"{"type":"digital_write","pin":3,"value":true}"#,

@@ -751,7 +751,37 @@ const BAD_LINES: &[(Dialect, &str, &str)] = &[
     (
         M13,
         r#"{"type":"digital_write","pin":30,"value":1}"#,
-        "cannot encode digital_write for mirte13: pin is out of range",
+        "field `pin` must be an integer 0..=29, found 30",
+    ),
+    (
+        M13,
+        r#"{"type":"i2c_read","port":2,"addr":104,"msg_id":3,"reg":117,"n":1,"no_stop":0}"#,
+        "field `port` must be an integer 0..=1, found 2",
+    ),
+    (
+        M13,
+        r#"{"type":"i2c_read","port":0,"addr":128,"msg_id":3,"reg":117,"n":1,"no_stop":0}"#,
+        "field `addr` must be an integer 0..=127, found 128",
+    ),
+    (
+        M13,
+        r#"{"type":"i2c_read","port":0,"addr":104,"msg_id":3,"reg":117,"n":58,"no_stop":0}"#,
+        "field `n` must be an integer 1..=57, found 58",
+    ),
+    (
+        M13,
+        r#"{"type":"set_pin_mode","pin":25,"mode":"analog_input","differential":1,"report_enable":true}"#,
+        "field `pin` must be an integer 26..=30, found 25",
+    ),
+    (
+        Dialect::Mirte12,
+        r#"{"type":"modify_reporting","action":"enable_analog","pin":26}"#,
+        "field `pin` must be an integer 0..=4, found 26",
+    ),
+    (
+        M13,
+        r#"{"type":"sonar_new","trig":9,"echo":40}"#,
+        "field `echo` must be an integer 0..=29, found 40",
     ),
     (
         M13,

@@ -5,11 +5,11 @@
 use proptest::prelude::*;
 use proptest::strategy::Union;
 use robowire::telemetrix::{
-    Command, CommandBuf, Device, DeviceDecoder, Dialect, EncoderKind, Framing, HiwonderCommand, Host,
-    HostDecoder, LenientHostDecoder, List, ModifyReporting, ModuleCommand, ModuleInit, ModuleNew,
-    ModuleReport, Pca9685Channel, Pca9685Command, Pca9685Config, PinMode, Pull, Pulls, PwmPin,
-    RelayCommand, Report, Rgb, SensorNew, SensorReading, SensorType, ServoMove, ServoPositions,
-    Sonar, Ssd1306Command, Ssd1306Done, SONAR_NO_ECHO, SONAR_STALE,
+    Command, CommandBuf, Device, DeviceDecoder, Dialect, EncoderKind, Framing, HiwonderCommand,
+    Host, HostDecoder, LenientHostDecoder, List, ModifyReporting, ModuleCommand, ModuleInit,
+    ModuleNew, ModuleReport, Pca9685Channel, Pca9685Command, Pca9685Config, PinMode, Pull, Pulls,
+    PwmPin, RelayCommand, Report, Rgb, SensorNew, SensorReading, SensorType, ServoMove,
+    ServoPositions, Sonar, Ssd1306Command, Ssd1306Done, SONAR_NO_ECHO, SONAR_STALE,
 };
 use robowire::{FrameRules, StreamDecoder};
 

@@ -27,7 +27,7 @@ use super::module::{
 };
 use super::report::{Report, Sonar, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
 use super::sensor::{SensorNew, SensorReading, SensorType};
-use super::wire::{COMMAND_PAYLOAD_MAX, MAX_REPORT_FRAME};
+use super::wire::{COMMAND_PAYLOAD_MAX, MAX_REPORT_FRAME, PIN_COUNT};
 use crate::serde_support::{read_f32, read_int, serialize_f32, Fields, Value};
 
 // ---------------------------------------------------------------- Serialize
@@ -333,6 +333,24 @@ fn i16_(f: &mut Fields<'_>, key: &str) -> Result<i16, String> {
     f.int(key, -32768, 32767).map(|v| v as i16)
 }
 
+/// An integer `min..=max` that fits a byte.
+fn ranged(f: &mut Fields<'_>, key: &str, min: u8, max: u8) -> Result<u8, String> {
+    f.int(key, i64::from(min), i64::from(max)).map(|v| v as u8)
+}
+
+/// A GPIO number, `0..=29`.
+fn pin_(f: &mut Fields<'_>, key: &str) -> Result<u8, String> {
+    ranged(f, key, 0, PIN_COUNT - 1)
+}
+
+/// An analog pin `pin`: GPIO 26..=30 in mirte 1.3, ADC 0..=4 before.
+fn analog_pin(f: &mut Fields<'_>, dialect: Dialect) -> Result<u8, String> {
+    match dialect {
+        Dialect::Mirte13 => ranged(f, "pin", 26, 30),
+        Dialect::Mirte12 | Dialect::Upstream11 => ranged(f, "pin", 0, 4),
+    }
+}
+
 /// A flag: `true` or `false`.
 fn flag(f: &mut Fields<'_>, key: &str) -> Result<bool, String> {
     let value = f.value(key)?;
@@ -492,8 +510,13 @@ fn read_command<'b>(
             byte: u8_(f, "byte")?,
         },
         "set_pin_mode" => {
-            let pin = u8_(f, "pin")?;
-            let mode = match name(f, "mode", PinMode::NAMES)? {
+            let mode = name(f, "mode", PinMode::NAMES)?;
+            let pin = if mode == 5 {
+                analog_pin(f, dialect)?
+            } else {
+                pin_(f, "pin")?
+            };
+            let mode = match mode {
                 m @ 0..=2 => PinMode::DigitalInput {
                     pull: [Pull::None, Pull::Up, Pull::Down][m],
                     report: flag(f, "report_enable")?,
@@ -508,13 +531,13 @@ fn read_command<'b>(
             Command::SetPinMode { pin, mode }
         }
         "digital_write" => Command::DigitalWrite {
-            pin: u8_(f, "pin")?,
+            pin: pin_(f, "pin")?,
             value: digital_value(f)?,
         },
         "pwm_write" => {
             let pins = objects(f, "pins", |p| {
                 Ok(PwmPin {
-                    pin: u8_(p, "pin")?,
+                    pin: pin_(p, "pin")?,
                     value: u16_(p, "value")?,
                 })
             })?;
@@ -528,23 +551,23 @@ fn read_command<'b>(
             Command::ModifyReporting(match action {
                 0 => ModifyReporting::DisableAll,
                 1 => ModifyReporting::EnableAnalog {
-                    pin: u8_(f, "pin")?,
+                    pin: analog_pin(f, dialect)?,
                 },
                 2 => ModifyReporting::EnableDigital {
-                    pin: u8_(f, "pin")?,
+                    pin: pin_(f, "pin")?,
                 },
                 3 => ModifyReporting::DisableAnalog {
-                    pin: u8_(f, "pin")?,
+                    pin: analog_pin(f, dialect)?,
                 },
                 _ => ModifyReporting::DisableDigital {
-                    pin: u8_(f, "pin")?,
+                    pin: pin_(f, "pin")?,
                 },
             })
         }
         "get_firmware_version" => Command::GetFirmwareVersion,
         "get_pico_unique_id" => Command::GetUniqueId,
         "servo_attach" => {
-            let pin = u8_(f, "pin")?;
+            let pin = pin_(f, "pin")?;
             let pulse_range = match (f.has("min_us"), f.has("max_us")) {
                 (false, false) => None,
                 _ => Some((u16_(f, "min_us")?, u16_(f, "max_us")?)),
@@ -552,64 +575,64 @@ fn read_command<'b>(
             Command::ServoAttach { pin, pulse_range }
         }
         "servo_write" => Command::ServoWrite {
-            pin: u8_(f, "pin")?,
+            pin: pin_(f, "pin")?,
             pulse_us: u16_(f, "pulse_us")?,
         },
         "servo_detach" => Command::ServoDetach {
-            pin: u8_(f, "pin")?,
+            pin: pin_(f, "pin")?,
         },
         "i2c_begin" => Command::I2cBegin {
-            port: u8_(f, "port")?,
-            sda: u8_(f, "sda")?,
-            scl: u8_(f, "scl")?,
+            port: ranged(f, "port", 0, 1)?,
+            sda: pin_(f, "sda")?,
+            scl: pin_(f, "scl")?,
         },
         "i2c_read" if upstream => Command::I2cReadUpstream {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             reg: u8_(f, "reg")?,
-            len: u8_(f, "n")?,
+            len: ranged(f, "n", 1, 57)?,
             no_stop: u8_(f, "no_stop")?,
         },
         "i2c_read" => Command::I2cRead {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             msg_id: u8_(f, "msg_id")?,
             reg: u8_(f, "reg")?,
-            len: u8_(f, "n")?,
+            len: ranged(f, "n", 1, 57)?,
             no_stop: u8_(f, "no_stop")?,
         },
         "i2c_write" if upstream => Command::I2cWriteUpstream {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             no_stop: u8_(f, "no_stop")?,
             data: bytes_in(f, "data", buf)?,
         },
         "i2c_write" => Command::I2cWrite {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             msg_id: u8_(f, "msg_id")?,
             no_stop: u8_(f, "no_stop")?,
             data: bytes_in(f, "data", buf)?,
         },
         "sonar_new" => Command::SonarNew {
-            trig: u8_(f, "trig")?,
-            echo: u8_(f, "echo")?,
+            trig: pin_(f, "trig")?,
+            echo: pin_(f, "echo")?,
         },
         "dht_new" => Command::DhtNew {
-            pin: u8_(f, "pin")?,
+            pin: pin_(f, "pin")?,
         },
         "stop_all_reports" => Command::StopAllReports,
         "enable_all_reports" => Command::EnableAllReports,
         "reset_data" => Command::ResetData,
         "reset_board" => Command::ResetBoard,
         "initialize_neo_pixels" => Command::InitNeoPixels {
-            pin: u8_(f, "pin")?,
-            count: u8_(f, "count")?,
+            pin: pin_(f, "pin")?,
+            count: ranged(f, "count", 0, 100)?,
             rgb: rgb(f)?,
         },
         "show_neo_pixels" => Command::ShowNeoPixels,
         "set_neo_pixel" => Command::SetNeoPixel {
-            index: u8_(f, "index")?,
+            index: ranged(f, "index", 0, 99)?,
             rgb: rgb(f)?,
             auto_show: flag(f, "auto_show")?,
         },
@@ -625,30 +648,30 @@ fn read_command<'b>(
             auto_show: flag(f, "auto_show")?,
         },
         "spi_init" => Command::SpiInit {
-            port: u8_(f, "port")?,
-            pin_a: u8_(f, "pin_a")?,
-            pin_b: u8_(f, "pin_b")?,
-            clk: u8_(f, "clk")?,
-            freq_hz: f.int("freq_hz", 0, i64::from(u32::MAX))? as u32,
+            port: ranged(f, "port", 0, 1)?,
+            pin_a: pin_(f, "pin_a")?,
+            pin_b: pin_(f, "pin_b")?,
+            clk: pin_(f, "clk")?,
+            freq_hz: f.int("freq_hz", 1, i64::from(u32::MAX))? as u32,
             cs_pins: bytes_in(f, "cs_pins", buf)?,
         },
         "spi_write_blocking" => Command::SpiWrite {
-            port: u8_(f, "port")?,
+            port: ranged(f, "port", 0, 1)?,
             data: bytes_in(f, "data", buf)?,
         },
         "spi_read_blocking" => Command::SpiRead {
-            port: u8_(f, "port")?,
-            len: u8_(f, "n")?,
+            port: ranged(f, "port", 0, 1)?,
+            len: ranged(f, "n", 0, 60)?,
             tx_fill: u8_(f, "tx_fill")?,
         },
         "spi_set_format" => Command::SpiSetFormat {
-            port: u8_(f, "port")?,
-            data_bits: u8_(f, "data_bits")?,
+            port: ranged(f, "port", 0, 1)?,
+            data_bits: ranged(f, "data_bits", 4, 16)?,
             cpol: level(f, "cpol")?,
             cpha: level(f, "cpha")?,
         },
         "spi_cs_control" => Command::SpiCsControl {
-            cs_pin: u8_(f, "cs_pin")?,
+            cs_pin: pin_(f, "cs_pin")?,
             high: level(f, "level")?,
         },
         "set_scan_delay" => Command::SetScanDelay {
@@ -659,8 +682,8 @@ fn read_command<'b>(
                 0 => EncoderKind::Single,
                 _ => EncoderKind::Quadrature,
             },
-            pin_a: u8_(f, "pin_a")?,
-            pin_b: u8_(f, "pin_b")?,
+            pin_a: pin_(f, "pin_a")?,
+            pin_b: pin_(f, "pin_b")?,
             // Only mirte 1.3 has the pulls byte; elsewhere `pulls` is an
             // unknown field.
             pulls: if dialect == Dialect::Mirte13 {
