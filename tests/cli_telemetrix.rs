@@ -1009,3 +1009,43 @@ fn help_documents_the_contract() {
     let top = run(&["decode", "--help"], b"");
     assert!(top.text().contains("telemetrix"));
 }
+
+#[test]
+fn mirte12_sensors_decode_and_encode_back() {
+    // Spec §10.1: the mirte 1.2 Python client's short SENSOR_NEW adding a
+    // VEML6040, and its report (R 10000, G 20000, B 30000, W 40000).
+    let input = "04 1f 00 04 01  0b 14 00 04 10 27 20 4e 30 75 40 9c";
+    let r = run(
+        &[
+            "decode",
+            "telemetrix",
+            "--dialect",
+            "mirte12",
+            "--hex",
+            "--errors",
+        ],
+        input.as_bytes(),
+    );
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    assert_eq!(
+        r.lines(),
+        [
+            r#"{"offset":0,"len":5,"type":"sensor_new","subtype":"add","sensor_num":0,"sensor_type":"veml6040","settings":[1]}"#,
+            r#"{"offset":5,"len":12,"type":"sensor_report","sensor_num":0,"sensor_type":"veml6040","reading":{"r":10000,"g":20000,"b":30000,"w":40000}}"#,
+        ]
+    );
+    let back = run(
+        &["encode", "telemetrix", "--dialect", "mirte12", "--hex"],
+        &r.stdout,
+    );
+    assert_eq!(back.code, 0, "{}", back.stderr);
+    assert_eq!(hex(back.text()), hex(input));
+    // mirte 1.3 has neither layout: its SENSOR_NEW add is 10 bytes, its
+    // VEML6040 reading big-endian.
+    let m13 = run(
+        &["decode", "telemetrix", "--hex", "--errors"],
+        input.as_bytes(),
+    );
+    assert!(m13.lines()[0].contains(r#""error":"bad_length","id":31"#));
+    assert!(!m13.text().contains(r#""r":10000"#), "{}", m13.text());
+}

@@ -21,6 +21,26 @@ const PICO: bool = false;
 /// The tool's lines (of robowire 0.1) for one frame of every kind: dialect,
 /// direction (host: a command), frame, line.
 const CASES: &[(Dialect, bool, &str, &str)] = &[
+    // mirte 1.2's sensors (spec §10.1): SENSOR_NEW without a subtype byte and
+    // with the settings bytes sent, the VEML6040 report little-endian.
+    (
+        M12,
+        HOST,
+        "04 1f 00 04 01",
+        r#"{"type":"sensor_new","subtype":"add","sensor_num":0,"sensor_type":"veml6040","settings":[1]}"#,
+    ),
+    (
+        M12,
+        HOST,
+        "03 1f 02 04",
+        r#"{"type":"sensor_new","subtype":"add","sensor_num":2,"sensor_type":"veml6040","settings":[]}"#,
+    ),
+    (
+        M12,
+        PICO,
+        "0b 14 00 04 10 27 20 4e 30 75 40 9c",
+        r#"{"type":"sensor_report","sensor_num":0,"sensor_type":"veml6040","reading":{"r":10000,"g":20000,"b":30000,"w":40000}}"#,
+    ),
     (
         M13,
         HOST,

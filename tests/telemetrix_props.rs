@@ -258,6 +258,21 @@ fn command(d: Dialect) -> BoxedStrategy<C> {
     }
     if d == Dialect::Mirte12 {
         arms.push(
+            (
+                any::<u8>(),
+                prop::sample::select(&SensorType::ALL[..7]),
+                prop::collection::vec(any::<u8>(), 0..=6),
+            )
+                .prop_map(|(sensor_num, sensor_type, settings)| {
+                    C::SensorNew(SensorNew::AddMirte12 {
+                        sensor_num,
+                        sensor_type,
+                        settings: List::from_slice(&settings).unwrap(),
+                    })
+                })
+                .boxed(),
+        );
+        arms.push(
             (pin(), any::<bool>())
                 .prop_map(|(pin, on)| {
                     C::ModifyReporting(if on {
@@ -503,6 +518,16 @@ fn report(d: Dialect) -> BoxedStrategy<R> {
                 })
                 .boxed(),
         ),
+    }
+    if d == Dialect::Mirte12 {
+        arms.push(
+            (any::<u8>(), any::<[u16; 4]>())
+                .prop_map(|(sensor_num, [r, g, b, w])| R::Sensor {
+                    sensor_num,
+                    reading: SensorReading::Veml6040 { r, g, b, w },
+                })
+                .boxed(),
+        );
     }
     if mirte {
         arms.extend([

@@ -35,13 +35,13 @@ const NO_COMMAND: Command<'static> = Command::GetFirmwareVersion;
 /// See [`NO_COMMAND`].
 const NO_REPORT: Report<'static> = Report::LoopBack { byte: 0 };
 
-/// The first of `command`'s home dialects that accepts `frame`, its bytes.
+/// The first of `command`'s home dialects that reads `frame`, its bytes, as
+/// `command`; else the first that accepts it.
 fn command_dialect(command: &Command<'_>, frame: &[u8]) -> Dialect {
-    command
-        .home_dialects()
-        .iter()
-        .copied()
-        .find(|&d| parse_command(d, frame).is_ok())
+    let home = command.home_dialects().iter().copied();
+    home.clone()
+        .find(|&d| parse_command(d, frame).as_ref() == Ok(command))
+        .or_else(|| home.clone().find(|&d| parse_command(d, frame).is_ok()))
         .unwrap_or_default()
 }
 
@@ -56,15 +56,21 @@ fn report_dialect(report: &Report<'_>, frame: &[u8]) -> (Dialect, bool) {
                 .unwrap_or_default(),
             true,
         ),
-        _ => (
-            report
-                .home_dialects()
-                .iter()
-                .copied()
-                .find(|&d| parse_report_with(d, false, frame).is_ok())
-                .unwrap_or_default(),
-            false,
-        ),
+        // The first that reads the frame as `report` (a mirte 1.2 VEML6040
+        // reading is little-endian, mirte 1.3's big-endian), else the first
+        // that accepts it.
+        _ => {
+            let home = report.home_dialects().iter().copied();
+            let dialect = home
+                .clone()
+                .find(|&d| parse_report_with(d, false, frame).as_ref() == Ok(report))
+                .or_else(|| {
+                    home.clone()
+                        .find(|&d| parse_report_with(d, false, frame).is_ok())
+                })
+                .unwrap_or_default();
+            (dialect, false)
+        }
     }
 }
 

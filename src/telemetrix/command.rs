@@ -19,7 +19,7 @@ use command_id as id;
 pub(crate) const fn command_known(dialect: Dialect, id: u8) -> bool {
     match dialect {
         Dialect::Mirte13 => id <= id::BOOTLOADER_RESET,
-        Dialect::Mirte12 => id <= id::PING && id != id::SENSOR_NEW,
+        Dialect::Mirte12 => id <= id::PING,
         Dialect::Upstream11 => id <= id::SPI_CS_CONTROL,
     }
 }
@@ -50,6 +50,7 @@ pub(crate) const fn command_len_range(dialect: Dialect, id: u8) -> Option<(u8, u
         id::FILL_NEO_PIXELS | id::SPI_SET_FORMAT => (5, 5),
         id::ENCODER_NEW if matches!(dialect, Dialect::Mirte12) => (4, 4),
         id::ENCODER_NEW => (5, 5),
+        id::SENSOR_NEW if matches!(dialect, Dialect::Mirte12) => (3, 9),
         id::SENSOR_NEW => (3, 10),
         id::MODULE_NEW => (3, 30),
         id::MODULE_DATA => (2, 30),
@@ -420,7 +421,8 @@ pub enum Command<'a> {
         /// byte; `None` in mirte 1.2, whose frame does not.
         pulls: Option<Pulls>,
     },
-    /// 31 SENSOR_NEW (mirte 1.3).
+    /// 31 SENSOR_NEW (mirte 1.3, and mirte 1.2's own layout
+    /// [`SensorNew::AddMirte12`]).
     SensorNew(SensorNew),
     /// 32 PING (mirte only): answered by report 32.
     Ping {
@@ -563,6 +565,9 @@ impl<'a> Command<'a> {
                     max: 1,
                 })
             }
+            Command::SensorNew(s) if s.dialect() != dialect => Err(EncodeError::Inconsistent {
+                what: "SENSOR_NEW has mirte 1.3's layout in mirte 1.3 only, mirte 1.2's in mirte 1.2 only",
+            }),
             Command::EncoderNew { pulls: Some(_), .. } if dialect != Dialect::Mirte13 => {
                 Err(EncodeError::Inconsistent {
                     what: "mirte 1.2 firmware has no encoder pull setting",
@@ -617,6 +622,8 @@ impl<'a> Command<'a> {
             }
             Command::EncoderNew { pulls: Some(_), .. } => &[Dialect::Mirte13],
             Command::EncoderNew { pulls: None, .. } => &[Dialect::Mirte12],
+            Command::SensorNew(SensorNew::AddMirte12 { .. }) => &[Dialect::Mirte12],
+            Command::SensorNew(_) => &[Dialect::Mirte13],
             _ => &Dialect::ALL,
         }
     }
@@ -1149,7 +1156,7 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
                 pulls,
             }
         }
-        id::SENSOR_NEW => Command::SensorNew(SensorNew::parse(r)?),
+        id::SENSOR_NEW => Command::SensorNew(SensorNew::parse(r, dialect)?),
         id::PING => Command::Ping { counter: r.u8()? },
         id::MODULE_NEW => Command::ModuleNew(ModuleNew::parse(r)?),
         id::MODULE_DATA => {

@@ -459,6 +459,16 @@ impl Visit for CommandView<'_, '_> {
                 w.s("sensor_type", sensor_type.name());
                 w.bytes("settings", &settings);
             }
+            Command::SensorNew(SensorNew::AddMirte12 {
+                sensor_num,
+                sensor_type,
+                settings,
+            }) => {
+                w.s("subtype", "add");
+                w.u("sensor_num", sensor_num);
+                w.s("sensor_type", sensor_type.name());
+                w.bytes("settings", &settings);
+            }
             Command::Ping { counter } => w.u("counter", counter),
             Command::ModuleNew(ModuleNew::Check { module_type }) => {
                 w.s("subtype", "check");

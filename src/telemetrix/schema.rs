@@ -701,6 +701,22 @@ fn read_command<'b>(
             0 => SensorNew::Check {
                 sensor_type: type_byte(f, "sensor_type", SensorType::NAMES)?,
             },
+            // mirte 1.2's own layout: the settings bytes sent, 0 to 6.
+            _ if dialect == Dialect::Mirte12 => {
+                let sensor_num = u8_(f, "sensor_num")?;
+                let sensor_type = sensor_type(f)?;
+                let settings = bytes(f, "settings")?;
+                SensorNew::AddMirte12 {
+                    sensor_num,
+                    sensor_type,
+                    settings: List::from_slice(&settings).map_err(|_| {
+                        format!(
+                            "field `settings` must be an array of at most 6 bytes, found {} bytes",
+                            settings.len()
+                        )
+                    })?,
+                }
+            }
             _ => SensorNew::Add {
                 sensor_num: u8_(f, "sensor_num")?,
                 sensor_type: sensor_type(f)?,

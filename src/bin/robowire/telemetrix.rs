@@ -63,7 +63,8 @@ its name; encode refuses such a line.
   sensor_report: sensor_num, sensor_type, reading {{typed fields; floats read back
     as the same f32, \"inf\"/\"-inf\"/\"nan:0x...\" otherwise}}.
   module_report: module_num, module_type, message {{subtype, fields}}.
-  sensor_new, module_new: subtype check or add; module_new add has init {{...}}.
+  sensor_new, module_new: subtype check or add; module_new add has init {{...}};
+    mirte12's sensor_new is an add whose settings are the 0 to 6 bytes sent.
   module_data: module_num, then module_type and message {{subtype, fields}} when an
     earlier module_new add (or module_report) in the input named the module's
     type and the bytes parse as its data; otherwise data [bytes].
