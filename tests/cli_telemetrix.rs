@@ -1049,3 +1049,79 @@ fn mirte12_sensors_decode_and_encode_back() {
     assert!(m13.lines()[0].contains(r#""error":"bad_length","id":31"#));
     assert!(!m13.text().contains(r#""r":10000"#), "{}", m13.text());
 }
+
+#[test]
+fn as_firmware_frames_commands_as_the_pico_does() {
+    // PING 7, STOP_ALL_REPORTS, GET_FIRMWARE_VERSION with the 07 lost: the
+    // firmware runs PING 1, then waits for 15 bytes (STOP's id as a LEN);
+    // the robust decoder finds GET_FIRMWARE_VERSION after resyncing.
+    let input = b"02 20 01 0f 01 05";
+    let firmware = run(
+        &[
+            "decode",
+            "telemetrix",
+            "--from",
+            "host",
+            "--as-firmware",
+            "--hex",
+            "--errors",
+        ],
+        input,
+    );
+    assert_eq!(firmware.code, 0, "{}", firmware.stderr);
+    assert_eq!(
+        firmware.lines(),
+        [
+            r#"{"offset":0,"len":3,"type":"ping","counter":1}"#,
+            r#"{"offset":3,"error":"truncated","len":3}"#,
+            r#"{"offset":4,"error":"truncated","len":2}"#,
+            r#"{"offset":5,"error":"truncated","len":1}"#,
+        ]
+    );
+    let robust = run(&["decode", "telemetrix", "--from", "host", "--hex"], input);
+    assert_eq!(
+        robust.lines(),
+        [
+            r#"{"offset":0,"len":3,"type":"ping","counter":1}"#,
+            r#"{"offset":4,"len":2,"type":"get_firmware_version"}"#,
+        ]
+    );
+    // A frame the firmware runs although it is no valid command is consumed
+    // whole (counted as malformed), never rescanned.
+    let r = run(
+        &[
+            "decode",
+            "telemetrix",
+            "--from",
+            "host",
+            "--as-firmware",
+            "--hex",
+            "--errors",
+        ],
+        b"00 1f 02 01 19 01 05",
+    );
+    assert_eq!(
+        r.lines(),
+        [
+            r#"{"offset":2,"error":"bad_length","id":1,"len_byte":2}"#,
+            r#"{"offset":5,"len":2,"type":"get_firmware_version"}"#,
+        ]
+    );
+    assert!(r.stderr.contains("1 malformed"), "{}", r.stderr);
+    // Only with --from host.
+    for from in ["pico", "any"] {
+        let r = run(
+            &[
+                "decode",
+                "telemetrix",
+                "--from",
+                from,
+                "--as-firmware",
+                "--hex",
+            ],
+            b"01 05",
+        );
+        assert_eq!(r.code, 2, "--from {from}");
+        assert!(r.stderr.contains("--as-firmware"), "{}", r.stderr);
+    }
+}

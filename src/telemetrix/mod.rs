@@ -137,6 +137,11 @@
 //! as reports, and a [`CaptureContext`] attributes them to the direction of
 //! the last frame that was valid one way only.
 //!
+//! **Firmware-exact mode** (opt-in, commands only):
+//! [`Framing::as_firmware`] frames commands as the Pico's firmware does
+//! (trust `LEN`, never rescan), to reconstruct what the device ran rather
+//! than what the host meant.
+//!
 //! **Lenient mode** (opt-in, reports only): [`Framing::lenient`] with a
 //! [`LenientHostDecoder`] accepts an unknown id as [`Report::Unknown`],
 //! skipped by its `LEN`, only when a valid known report follows directly

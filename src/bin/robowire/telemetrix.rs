@@ -163,6 +163,12 @@ pub struct DecodeArgs {
     /// host.
     #[arg(long, display_order = 5)]
     pub lenient: bool,
+    /// With --from host: frame commands exactly as the Pico's firmware does
+    /// (a length byte 00 or over 30 is dropped, any other is trusted, never a
+    /// rescan), to see what the device ran; a frame that is no valid command
+    /// is an error and consumed whole.
+    #[arg(long, display_order = 6)]
+    pub as_firmware: bool,
     /// The options every decode shares.
     #[command(flatten)]
     pub common: DecodeCommon,
@@ -187,6 +193,11 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
             "--lenient accepts unknown report ids, which --from host does not decode".to_owned(),
         ));
     }
+    if args.as_firmware && args.from != From::Host {
+        return Err(Failure::Usage(
+            "--as-firmware frames commands as the Pico does; use it with --from host".to_owned(),
+        ));
+    }
     let mut source = args.common.source()?;
     let mut printer = Printer::new(out, args.common.errors);
     let chunk = args.common.chunk as usize;
@@ -195,6 +206,11 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     match args.from {
         From::Host => {
             let framing = Framing::<Device>::new().with_dialect(dialect);
+            let framing = if args.as_firmware {
+                framing.as_firmware()
+            } else {
+                framing
+            };
             decode_stream(framing, source, chunk, &mut printer)
         }
         From::Pico => {
