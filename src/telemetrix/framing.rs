@@ -132,7 +132,10 @@ pub struct Framing<S> {
     lenient: bool,
     /// Commands framed as the firmware frames them (see
     /// [`Framing::as_firmware`]).
-    #[cfg_attr(feature = "serde", serde(default))]
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "core::ops::Not::not")
+    )]
     firmware: bool,
     #[cfg_attr(feature = "serde", serde(skip))]
     side: PhantomData<S>,
