@@ -151,8 +151,9 @@ impl CommandBuf {
     /// What is dubious in the frame read in [`dialect`](Self::dialect), if
     /// anything: it came from a real host and the encoder would refuse it
     /// (see [`Quirk`]). A decoder's owned form has the first of the
-    /// command's dialects that accepts the bytes, mirte 1.3 first; a
-    /// [`CaptureContext`](super::CaptureContext) sets the decoder's.
+    /// command's dialects that reads the bytes as that command, mirte 1.3
+    /// first; a [`CaptureContext`](super::CaptureContext) sets the
+    /// decoder's.
     pub fn quirk(&self) -> Option<Quirk> {
         command_quirk(self.dialect, self.frame())
     }
