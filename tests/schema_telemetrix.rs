@@ -805,6 +805,21 @@ const BAD_LINES: &[(Dialect, &str, &str)] = &[
     ),
     (
         M13,
+        r#"{"type":"digital_report","pin":40,"value":1}"#,
+        "field `pin` must be an integer 0..=29, found 40",
+    ),
+    (
+        M13,
+        r#"{"type":"analog_report","pin":26,"value":4096}"#,
+        "field `value` must be an integer 0..=4095, found 4096",
+    ),
+    (
+        M13,
+        r#"{"type":"i2c_write_report","port":2,"msg_id":7,"result":2}"#,
+        "field `port` must be an integer 0..=1, found 2",
+    ),
+    (
+        M13,
         r#"{"type":"digital_write","pin":3,"value":true}"#,
         "field `value` must be an integer 0..=1, found true",
     ),

@@ -962,12 +962,12 @@ fn read_report<'b>(
             byte: u8_(f, "byte")?,
         },
         "digital_report" => Report::Digital {
-            pin: u8_(f, "pin")?,
+            pin: pin_(f, "pin")?,
             value: digital_value(f)?,
         },
         "analog_report" => Report::Analog {
             pin: u8_(f, "pin")?,
-            value: u16_(f, "value")?,
+            value: f.int("value", 0, 4095)? as u16,
         },
         "firmware_version" => Report::FirmwareVersion {
             major: u8_(f, "major")?,
@@ -977,39 +977,39 @@ fn read_report<'b>(
             id: f.array("id", byte)?,
         },
         "i2c_write_report" => Report::I2cWrite {
-            port: u8_(f, "port")?,
+            port: ranged(f, "port", 0, 1)?,
             msg_id: u8_(f, "msg_id")?,
             result: i8_(f, "result")?,
         },
         "i2c_write_failed" => Report::I2cWriteFailed {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             stale: u8_(f, "stale")?,
         },
         "i2c_read_failed" => Report::I2cReadFailed {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             stale: u8_(f, "stale")?,
         },
         "i2c_read_report" if upstream => Report::I2cReadUpstream {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             reg: u8_(f, "reg")?,
             data: bytes_in(f, "data", buf)?,
         },
         "i2c_read_report" => Report::I2cRead {
-            port: u8_(f, "port")?,
+            port: ranged(f, "port", 0, 1)?,
             msg_id: u8_(f, "msg_id")?,
             reg: u8_(f, "reg")?,
             data: bytes_in(f, "data", buf)?,
         },
         "sonar_distance" => Report::Sonar(match dialect {
             Dialect::Mirte13 => {
-                let trig = u8_(f, "trig")?;
+                let trig = pin_(f, "trig")?;
                 if f.has("echo") {
                     Sonar::WithEcho {
                         trig,
-                        echo: u8_(f, "echo")?,
+                        echo: pin_(f, "echo")?,
                         cm: sonar_cm(f)?,
                     }
                 } else {
@@ -1020,29 +1020,29 @@ fn read_report<'b>(
                 }
             }
             Dialect::Mirte12 => Sonar::MetresCm {
-                trig: u8_(f, "trig")?,
+                trig: pin_(f, "trig")?,
                 m: u8_(f, "m")?,
                 cm: u8_(f, "cm")?,
             },
             Dialect::Upstream11 => Sonar::CmHundredths {
-                trig: u8_(f, "trig")?,
+                trig: pin_(f, "trig")?,
                 cm: u8_(f, "cm")?,
                 hundredths: u8_(f, "hundredths")?,
             },
         }),
         "dht_report" => Report::Dht {
-            pin: u8_(f, "pin")?,
+            pin: pin_(f, "pin")?,
             humidity: u8_(f, "hum_int")?,
             humidity_hundredths: u8_(f, "hum_hundredths")?,
             temp: i8_(f, "temp_int")?,
             temp_hundredths: i8_(f, "temp_hundredths")?,
         },
         "spi_report" => Report::Spi {
-            port: u8_(f, "port")?,
+            port: ranged(f, "port", 0, 1)?,
             data: bytes_in(f, "data", buf)?,
         },
         "encoder_report" => Report::Encoder {
-            pin: u8_(f, "pin_a")?,
+            pin: pin_(f, "pin_a")?,
             steps: i8_(f, "steps")?,
         },
         "sensor_report" => {
