@@ -194,6 +194,15 @@ pub trait FrameRules {
 
     /// Turn a parsed message into its owned form.
     fn to_owned(message: Self::Message<'_>) -> Self::Owned;
+
+    /// Turn a message parsed from `frame` (its bytes) into its owned form.
+    /// By default [`to_owned`](FrameRules::to_owned); an owned form that
+    /// keeps the frame's bytes copies `frame`, so that nothing the parse
+    /// read leniently is lost.
+    fn to_owned_from(frame: &[u8], message: Self::Message<'_>) -> Self::Owned {
+        let _ = frame;
+        Self::to_owned(message)
+    }
 }
 
 /// A decoded frame: where it was in the stream, its bytes and its message.
@@ -865,7 +874,7 @@ pub fn owned_event<F: FrameRules>(event: Event<'_, F::Message<'_>, F::Error>) ->
     event.map(|frame| OwnedFrame {
         offset: frame.offset,
         len: frame.raw.len(),
-        message: F::to_owned(frame.message),
+        message: F::to_owned_from(frame.raw, frame.message),
     })
 }
 

@@ -815,3 +815,23 @@ fn help_documents_the_contract() {
     let r = run(&["decode", "--help"], b"");
     assert!(r.text().contains("pixy2"));
 }
+
+#[test]
+fn get_blocks_with_sigmap_zero_decodes_as_the_request_it_is() {
+    // What the official host library sends for sigmap 0 (the camera answers
+    // ERROR -3); it was rejected as malformed.
+    for from in ["host", "any"] {
+        let r = decode(
+            &["--hex", "--errors", "--from", from],
+            b"ae c1 20 02 00 05  af c1 20 02 05 00 00 05",
+        );
+        assert_eq!(
+            r.lines(),
+            [
+                r#"{"offset":0,"len":6,"type":"get_blocks","checksum":false,"sigmap":0,"max_blocks":5}"#,
+                r#"{"offset":6,"len":8,"type":"get_blocks","checksum":true,"sigmap":0,"max_blocks":5}"#,
+            ],
+            "--from {from}"
+        );
+    }
+}

@@ -682,18 +682,22 @@ fn round_trip(input: &[u8], extra: &[&str], dialect: &str) -> usize {
     assert_eq!(decoded.code, 0, "{}", decoded.stderr);
     let mut expected = Vec::new();
     let mut frames = 0;
-    for event in decoded.json() {
-        if event.get("type").is_some() {
+    // A frame flagged with a quirk (a real peer's, decoded as the firmware
+    // reads it) is the encoder's to refuse: it is left out.
+    let mut lines = Vec::new();
+    for (line, event) in decoded.text().lines().zip(decoded.json()) {
+        if event.get("quirk").is_none() {
+            lines.extend_from_slice(line.as_bytes());
+            lines.push(b'\n');
+        }
+        if event.get("type").is_some() && event.get("quirk").is_none() {
             let offset = event["offset"].as_u64().unwrap() as usize;
             let len = event["len"].as_u64().unwrap() as usize;
             expected.extend_from_slice(&input[offset..offset + len]);
             frames += 1;
         }
     }
-    let encoded = run(
-        &["encode", "telemetrix", "--dialect", dialect],
-        &decoded.stdout,
-    );
+    let encoded = run(&["encode", "telemetrix", "--dialect", dialect], &lines);
     assert_eq!(encoded.code, 0, "{extra:?} {dialect}: {}", encoded.stderr);
     assert!(
         encoded.stdout == expected,
@@ -702,7 +706,7 @@ fn round_trip(input: &[u8], extra: &[&str], dialect: &str) -> usize {
     // And through hex, one frame per line.
     let as_hex = run(
         &["encode", "telemetrix", "--hex", "--dialect", dialect],
-        &decoded.stdout,
+        &lines,
     );
     assert_eq!(as_hex.text().lines().count(), frames);
     assert_eq!(hex(as_hex.text()), expected);
@@ -792,7 +796,7 @@ fn malformed_json_lines() {
         ),
         (
             r#"{"type":"digital_write","pin":30,"value":1}"#,
-            "cannot encode digital_write for mirte13: pin is out of range",
+            "field `pin` must be an integer 0..=29, found 30",
         ),
         (
             r#"{"type":"digital_write","pin":3,"value":true}"#,
@@ -1004,4 +1008,120 @@ fn help_documents_the_contract() {
     assert!(r.text().contains("--dialect <DIALECT>"));
     let top = run(&["decode", "--help"], b"");
     assert!(top.text().contains("telemetrix"));
+}
+
+#[test]
+fn mirte12_sensors_decode_and_encode_back() {
+    // Spec §10.1: the mirte 1.2 Python client's short SENSOR_NEW adding a
+    // VEML6040, and its report (R 10000, G 20000, B 30000, W 40000).
+    let input = "04 1f 00 04 01  0b 14 00 04 10 27 20 4e 30 75 40 9c";
+    let r = run(
+        &[
+            "decode",
+            "telemetrix",
+            "--dialect",
+            "mirte12",
+            "--hex",
+            "--errors",
+        ],
+        input.as_bytes(),
+    );
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    assert_eq!(
+        r.lines(),
+        [
+            r#"{"offset":0,"len":5,"type":"sensor_new","subtype":"add","sensor_num":0,"sensor_type":"veml6040","settings":[1]}"#,
+            r#"{"offset":5,"len":12,"type":"sensor_report","sensor_num":0,"sensor_type":"veml6040","reading":{"r":10000,"g":20000,"b":30000,"w":40000}}"#,
+        ]
+    );
+    let back = run(
+        &["encode", "telemetrix", "--dialect", "mirte12", "--hex"],
+        &r.stdout,
+    );
+    assert_eq!(back.code, 0, "{}", back.stderr);
+    assert_eq!(hex(back.text()), hex(input));
+    // mirte 1.3 has neither layout: its SENSOR_NEW add is 10 bytes, its
+    // VEML6040 reading big-endian.
+    let m13 = run(
+        &["decode", "telemetrix", "--hex", "--errors"],
+        input.as_bytes(),
+    );
+    assert!(m13.lines()[0].contains(r#""error":"bad_length","id":31"#));
+    assert!(!m13.text().contains(r#""r":10000"#), "{}", m13.text());
+}
+
+#[test]
+fn as_firmware_frames_commands_as_the_pico_does() {
+    // PING 7, STOP_ALL_REPORTS, GET_FIRMWARE_VERSION with the 07 lost: the
+    // firmware runs PING 1, then waits for 15 bytes (STOP's id as a LEN);
+    // the robust decoder finds GET_FIRMWARE_VERSION after resyncing.
+    let input = b"02 20 01 0f 01 05";
+    let firmware = run(
+        &[
+            "decode",
+            "telemetrix",
+            "--from",
+            "host",
+            "--as-firmware",
+            "--hex",
+            "--errors",
+        ],
+        input,
+    );
+    assert_eq!(firmware.code, 0, "{}", firmware.stderr);
+    assert_eq!(
+        firmware.lines(),
+        [
+            r#"{"offset":0,"len":3,"type":"ping","counter":1}"#,
+            r#"{"offset":3,"error":"truncated","len":3}"#,
+            r#"{"offset":4,"error":"truncated","len":2}"#,
+            r#"{"offset":5,"error":"truncated","len":1}"#,
+        ]
+    );
+    let robust = run(&["decode", "telemetrix", "--from", "host", "--hex"], input);
+    assert_eq!(
+        robust.lines(),
+        [
+            r#"{"offset":0,"len":3,"type":"ping","counter":1}"#,
+            r#"{"offset":4,"len":2,"type":"get_firmware_version"}"#,
+        ]
+    );
+    // A frame the firmware runs although it is no valid command is consumed
+    // whole (counted as malformed), never rescanned.
+    let r = run(
+        &[
+            "decode",
+            "telemetrix",
+            "--from",
+            "host",
+            "--as-firmware",
+            "--hex",
+            "--errors",
+        ],
+        b"00 1f 02 01 19 01 05",
+    );
+    assert_eq!(
+        r.lines(),
+        [
+            r#"{"offset":2,"error":"bad_length","id":1,"len_byte":2}"#,
+            r#"{"offset":5,"len":2,"type":"get_firmware_version"}"#,
+        ]
+    );
+    assert!(r.stderr.contains("1 malformed"), "{}", r.stderr);
+    // Only with --from host.
+    for from in ["pico", "any"] {
+        let r = run(
+            &[
+                "decode",
+                "telemetrix",
+                "--from",
+                from,
+                "--as-firmware",
+                "--hex",
+            ],
+            b"01 05",
+        );
+        assert_eq!(r.code, 2, "--from {from}");
+        assert!(r.stderr.contains("--as-firmware"), "{}", r.stderr);
+    }
 }

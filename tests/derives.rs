@@ -619,6 +619,11 @@ fn serde_telemetrix_is_the_json_lines_schema() {
             .lenient(),
         r#"{"dialect":"upstream11","lenient":true}"#,
     );
+    // The firmware-exact mode is written only when on.
+    json_round_trip(
+        &robowire::telemetrix::Framing::<robowire::telemetrix::Device>::new().as_firmware(),
+        r#"{"dialect":"mirte13","lenient":false,"firmware":true}"#,
+    );
     // Serialize only: the field name is a `&'static str`.
     assert_eq!(
         serde_json::to_string(&Error::OutOfRange {

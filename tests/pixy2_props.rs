@@ -295,7 +295,15 @@ proptest! {
         let mut input = &wire[..];
         while let Some(event) = d.decode(&mut input) {
             if let Ok(frame) = event {
-                let again = FrameBuf::<261>::encode(&frame.message).unwrap();
+                // A request the device refuses (getBlocks sigmap 0) is
+                // decoded; encoding it takes the explicit opt-in.
+                let again = match frame.message.body {
+                    pixy2::Message::Request(r) => FrameBuf::<261>::encode(
+                        &Envelope::new(frame.message.form, r).even_if_refused(),
+                    ),
+                    _ => FrameBuf::<261>::encode(&frame.message),
+                }
+                .unwrap();
                 prop_assert_eq!(&again[..], frame.raw);
             }
         }

@@ -21,6 +21,26 @@ const PICO: bool = false;
 /// The tool's lines (of robowire 0.1) for one frame of every kind: dialect,
 /// direction (host: a command), frame, line.
 const CASES: &[(Dialect, bool, &str, &str)] = &[
+    // mirte 1.2's sensors (spec §10.1): SENSOR_NEW without a subtype byte and
+    // with the settings bytes sent, the VEML6040 report little-endian.
+    (
+        M12,
+        HOST,
+        "04 1f 00 04 01",
+        r#"{"type":"sensor_new","subtype":"add","sensor_num":0,"sensor_type":"veml6040","settings":[1]}"#,
+    ),
+    (
+        M12,
+        HOST,
+        "03 1f 02 04",
+        r#"{"type":"sensor_new","subtype":"add","sensor_num":2,"sensor_type":"veml6040","settings":[]}"#,
+    ),
+    (
+        M12,
+        PICO,
+        "0b 14 00 04 10 27 20 4e 30 75 40 9c",
+        r#"{"type":"sensor_report","sensor_num":0,"sensor_type":"veml6040","reading":{"r":10000,"g":20000,"b":30000,"w":40000}}"#,
+    ),
     (
         M13,
         HOST,
@@ -751,7 +771,52 @@ const BAD_LINES: &[(Dialect, &str, &str)] = &[
     (
         M13,
         r#"{"type":"digital_write","pin":30,"value":1}"#,
-        "cannot encode digital_write for mirte13: pin is out of range",
+        "field `pin` must be an integer 0..=29, found 30",
+    ),
+    (
+        M13,
+        r#"{"type":"i2c_read","port":2,"addr":104,"msg_id":3,"reg":117,"n":1,"no_stop":0}"#,
+        "field `port` must be an integer 0..=1, found 2",
+    ),
+    (
+        M13,
+        r#"{"type":"i2c_read","port":0,"addr":128,"msg_id":3,"reg":117,"n":1,"no_stop":0}"#,
+        "field `addr` must be an integer 0..=127, found 128",
+    ),
+    (
+        M13,
+        r#"{"type":"i2c_read","port":0,"addr":104,"msg_id":3,"reg":117,"n":58,"no_stop":0}"#,
+        "field `n` must be an integer 1..=57, found 58",
+    ),
+    (
+        M13,
+        r#"{"type":"set_pin_mode","pin":25,"mode":"analog_input","differential":1,"report_enable":true}"#,
+        "field `pin` must be an integer 26..=30, found 25",
+    ),
+    (
+        Dialect::Mirte12,
+        r#"{"type":"modify_reporting","action":"enable_analog","pin":26}"#,
+        "field `pin` must be an integer 0..=4, found 26",
+    ),
+    (
+        M13,
+        r#"{"type":"sonar_new","trig":9,"echo":40}"#,
+        "field `echo` must be an integer 0..=29, found 40",
+    ),
+    (
+        M13,
+        r#"{"type":"digital_report","pin":40,"value":1}"#,
+        "field `pin` must be an integer 0..=29, found 40",
+    ),
+    (
+        M13,
+        r#"{"type":"analog_report","pin":26,"value":4096}"#,
+        "field `value` must be an integer 0..=4095, found 4096",
+    ),
+    (
+        M13,
+        r#"{"type":"i2c_write_report","port":2,"msg_id":7,"result":2}"#,
+        "field `port` must be an integer 0..=1, found 2",
     ),
     (
         M13,

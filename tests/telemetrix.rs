@@ -6,7 +6,7 @@ use robowire::telemetrix::{
     Command, CommandBuf, Device, DeviceDecoder, Dialect, EncoderKind, Error, Framing,
     HiwonderCommand, Host, HostDecoder, List, ModuleInit, ModuleNew, ModuleReport, ModuleType,
     Pca9685Channel, Pca9685Command, PinMode, Pull, Pulls, PwmPin, PwmPins, Report, ReportBuf,
-    SensorNew, SensorType, ServoMove, ServoPositions, Sonar, SonarReading,
+    SensorNew, SensorReading, SensorType, ServoMove, ServoPositions, Sonar, SonarReading,
 };
 use robowire::{Encode, EncodeError, FrameBuf, Rejected, StreamDecoder};
 
@@ -477,6 +477,76 @@ fn golden_firmware_reports_other_dialects() {
     );
     assert_eq!(Dialect::from_firmware_version(1, 2), Some(M12));
     assert_eq!(M13.firmware_version(), (1, 3));
+}
+
+#[test]
+fn golden_mirte12_sensors() {
+    // Spec §10.1: the mirte 1.2 Python client adds a VEML6040 on port 1 with
+    // the short form (num 0, type 4, one settings byte).
+    let veml = Command::SensorNew(SensorNew::AddMirte12 {
+        sensor_num: 0,
+        sensor_type: SensorType::Veml6040,
+        settings: List::from_slice(&[1]).unwrap(),
+    });
+    golden_command(M12, "04 1f 00 04 01", veml);
+    // No settings, and all six.
+    golden_command(
+        M12,
+        "03 1f 02 04",
+        Command::SensorNew(SensorNew::AddMirte12 {
+            sensor_num: 2,
+            sensor_type: SensorType::Veml6040,
+            settings: List::new(),
+        }),
+    );
+    golden_command(
+        M12,
+        "09 1f 01 06 01 40 00 00 00 00",
+        Command::SensorNew(SensorNew::AddMirte12 {
+            sensor_num: 1,
+            sensor_type: SensorType::Ina226,
+            settings: List::from_slice(&[1, 0x40, 0, 0, 0, 0]).unwrap(),
+        }),
+    );
+    // The report: 4 × u16 little-endian R, G, B, W.
+    golden_report(
+        M12,
+        "0b 14 00 04 10 27 20 4e 30 75 40 9c",
+        Report::Sensor {
+            sensor_num: 0,
+            reading: SensorReading::Veml6040 {
+                r: 10000,
+                g: 20000,
+                b: 30000,
+                w: 40000,
+            },
+        },
+    );
+    // Each layout in its own dialect only.
+    assert!(veml.to_buf_in(M13).is_err());
+    assert!(Command::SensorNew(SensorNew::Check { sensor_type: 4 })
+        .to_buf_in(M12)
+        .is_err());
+    // Types above 6, more than 6 settings bytes and other sensors' reports
+    // are not mirte 1.2's.
+    for bad in [
+        "04 1f 00 07 01",
+        "0a 1f 00 04 01 02 03 04 05 06 07",
+        "07 14 00 01 00 00 00 01",
+        "0a 14 00 04 10 27 20 4e 30 75 40",
+    ] {
+        let frame = hex(bad);
+        assert!(
+            Command::parse_in(&frame, M12).is_err() && Report::parse_in(&frame, M12).is_err(),
+            "{bad}"
+        );
+    }
+    // The owned form of a decoded report keeps mirte 1.2's reading.
+    let bytes = hex("0b 14 00 04 10 27 20 4e 30 75 40 9c");
+    let events = decode_reports(M12, &bytes);
+    let (_, _, ref owned) = events[0].unwrap();
+    assert_eq!(owned.dialect(), M12);
+    assert_eq!(&owned[..], &bytes[..]);
 }
 
 #[test]

@@ -268,6 +268,8 @@ impl Camera {
                 }
                 None => ResponseBuf::Error(General),
             },
+            // The camera refuses an empty signature map.
+            Request::GetBlocks(GetBlocks { sigmap: 0, .. }) => ResponseBuf::Error(InvalidRequest),
             Request::GetBlocks(q) => {
                 if self.last_blocks_frame == Some(frame) {
                     return ResponseBuf::Error(Busy);

@@ -1,16 +1,22 @@
 //! Every frame decoded from arbitrary bytes re-encodes to exactly its wire
 //! bytes, borrowed and owned, in both directions (host, device and
-//! any-direction decoders).
+//! any-direction decoders); a request the device refuses (getBlocks sigmap
+//! 0) through the explicit opt-in.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use robowire::pixy2::{self, Envelope};
+use robowire::pixy2::{self, Envelope, Message, Request};
 use robowire::{Encode, FrameBuf};
 
 fn same<M: Encode>(message: &M, raw: &[u8]) {
     let frame = FrameBuf::<261>::encode(message).expect("a decoded frame encodes");
     assert_eq!(&frame[..], raw);
     assert_eq!(message.encoded_len(), raw.len());
+}
+
+/// A request, through the opt-in that also encodes what the device refuses.
+fn same_request(request: Envelope<Request>, raw: &[u8]) {
+    same(&request.even_if_refused(), raw);
 }
 
 fuzz_target!(|data: &[u8]| {
@@ -29,7 +35,7 @@ fuzz_target!(|data: &[u8]| {
     let mut input = data;
     while let Some(event) = device.decode(&mut input) {
         if let Ok(frame) = event {
-            same(&frame.message, frame.raw);
+            same_request(frame.message, frame.raw);
             assert!(frame.raw.len() <= 6 + pixy2::DEVICE_MAX_PAYLOAD);
         }
     }
@@ -38,6 +44,10 @@ fuzz_target!(|data: &[u8]| {
     let mut input = data;
     while let Some(event) = any.decode(&mut input) {
         if let Ok(frame) = event {
+            if let Message::Request(r) = frame.message.body {
+                same_request(Envelope::new(frame.message.form, r), frame.raw);
+                continue;
+            }
             same(&frame.message, frame.raw);
             let owned = Envelope::new(frame.message.form, frame.message.body.to_owned());
             same(&owned, frame.raw);

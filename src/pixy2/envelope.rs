@@ -240,6 +240,86 @@ impl Body for MessageBuf {
     }
 }
 
+impl Envelope<Request> {
+    /// This request, to be encoded even if the device refuses it with an
+    /// error: getBlocks with sigmap 0, which the official host library sends
+    /// and the camera answers with ERROR −3. For testing a device or a
+    /// simulator; [`encode`](Encode::encode) on the envelope itself refuses
+    /// it.
+    ///
+    /// ```
+    /// use robowire::pixy2::{Envelope, Form, GetBlocks, Request};
+    /// use robowire::Encode;
+    ///
+    /// let empty = Envelope::new(Form::NoChecksum, Request::from(GetBlocks { sigmap: 0, max_blocks: 5 }));
+    /// let mut out = [0u8; 8];
+    /// assert!(empty.encode(&mut out).is_err());
+    /// let n = empty.even_if_refused().encode(&mut out)?;
+    /// assert_eq!(&out[..n], &[0xae, 0xc1, 0x20, 0x02, 0x00, 0x05]);
+    /// # Ok::<(), robowire::EncodeError>(())
+    /// ```
+    pub const fn even_if_refused(self) -> EvenIfRefused {
+        EvenIfRefused(self)
+    }
+}
+
+/// A request that encodes even if the device refuses it with an error
+/// (getBlocks with sigmap 0); made by [`Envelope::even_if_refused`].
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct EvenIfRefused(pub Envelope<Request>);
+
+/// getBlocks with sigmap 0, which [`Request`]'s own encoding refuses.
+struct ZeroSigmap {
+    max_blocks: u8,
+}
+
+impl Body for ZeroSigmap {
+    fn packet_type(&self) -> u8 {
+        super::wire::packet_type::GET_BLOCKS
+    }
+
+    fn payload_len(&self) -> usize {
+        2
+    }
+
+    fn write_payload(&self, out: &mut [u8]) -> Result<(), EncodeError> {
+        match out {
+            [sigmap, max_blocks] => {
+                *sigmap = 0;
+                *max_blocks = self.max_blocks;
+                Ok(())
+            }
+            _ => Err(EncodeError::BufferTooSmall {
+                needed: 2,
+                available: out.len(),
+            }),
+        }
+    }
+
+    fn default_form(&self) -> Form {
+        Form::NoChecksum
+    }
+}
+
+impl Encode for EvenIfRefused {
+    const MAX_LEN: usize = <Envelope<Request> as Encode>::MAX_LEN;
+
+    fn encoded_len(&self) -> usize {
+        self.0.encoded_len()
+    }
+
+    fn encode(&self, out: &mut [u8]) -> Result<usize, EncodeError> {
+        match self.0.body {
+            Request::GetBlocks(super::request::GetBlocks {
+                sigmap: 0,
+                max_blocks,
+            }) => encode_body(self.0.form, &ZeroSigmap { max_blocks }, out),
+            _ => self.0.encode(out),
+        }
+    }
+}
+
 /// `Encode` for a message in its default form and for `Envelope<message>`.
 macro_rules! impl_encode {
     ($ty:ty, $default_max:expr, $max_payload:expr) => {

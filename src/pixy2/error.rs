@@ -140,7 +140,9 @@ pub enum Malformed {
         len: usize,
     },
     /// getBlocks with an empty signature map: the device answers ERROR −3
-    /// rather than an empty list (spec §4.3).
+    /// rather than an empty list (spec §4.3). No longer produced by the
+    /// decoders, which read such a request as the
+    /// [`GetBlocks`](super::GetBlocks) it is.
     #[error("getBlocks with signature map 0 (the device answers ERROR -3)")]
     ZeroSigmap,
 }

@@ -15,7 +15,7 @@
 //! | a length the type cannot have: RESULT ≠ 4, ERROR ≠ 1, resolution ≠ 4, version ≠ 16, blocks ≠ 14·k (k ≤ 18), request lengths per type | header, byte 4 | [`Error::BadLength`] |
 //! | a request payload over 64 bytes (device and both-direction decoders) | header, byte 4 | [`Error::TooLong`] |
 //! | checksum mismatch | full frame | [`Error::Checksum`] |
-//! | malformed content: line section past the end or not a multiple of its element size, intersection `n` > 6, getBlocks sigmap 0 | **no-checksum form**: in framing, the candidate is rejected and everything after its first byte is rescanned. **Checksum form**: after the checksum passed, the frame is consumed and reported ([`Stats::malformed`](crate::Stats::malformed)) | [`Error::Malformed`] |
+//! | malformed content: line section past the end or not a multiple of its element size, intersection `n` > 6 (a getBlocks with sigmap 0 is a request: the device answers it with ERROR −3) | **no-checksum form**: in framing, the candidate is rejected and everything after its first byte is rescanned. **Checksum form**: after the checksum passed, the frame is consumed and reported ([`Stats::malformed`](crate::Stats::malformed)) | [`Error::Malformed`] |
 //! | input ends inside a candidate | `finish`/`flush` | [`Error::Truncated`] |
 //!
 //! In detail (spec §7.4):

@@ -137,7 +137,7 @@ mod wire;
 pub use blocks::{Block, BlockIter, Blocks, BlocksBuf, MAX_BLOCKS};
 #[allow(deprecated)]
 pub use envelope::Packet;
-pub use envelope::{Envelope, Message, MessageBuf};
+pub use envelope::{Envelope, EvenIfRefused, Message, MessageBuf};
 pub use error::{DeviceError, Error, Malformed, NameError};
 pub use features::{
     Barcode, Element, Elements, FeatureIter, Features, FeaturesBuf, Intersection, IntersectionLine,

@@ -13,7 +13,7 @@ use core::str::FromStr;
 
 use crate::encode::EncodeError;
 
-use super::error::{Error, Malformed};
+use super::error::Error;
 use super::wire::{packet_type as ty, Body, Form, DEVICE_MAX_PAYLOAD};
 
 /// A program name as sent by changeProg: the raw payload, at most 64 bytes.
@@ -230,8 +230,10 @@ pub struct GetFps;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct GetBlocks {
     /// Which signatures: bit k = signature k+1 ([`GetBlocks::SIG1`] …),
-    /// bit 7 = every colour code. Must not be 0 (the encoder refuses it: the
-    /// device answers ERROR −3).
+    /// bit 7 = every colour code. 0 is what the official host library sends
+    /// for an empty map, and the device answers it with ERROR −3: decoders
+    /// accept it, the encoder refuses it unless asked with
+    /// [`Envelope::even_if_refused`](super::Envelope::even_if_refused).
     pub sigmap: u8,
     /// Most blocks to return; 0 gives an empty list.
     pub max_blocks: u8,
@@ -648,15 +650,10 @@ impl Request {
             }),
             ty::GET_FPS => Self::GetFps(GetFps),
             ty::GET_BLOCKS => {
-                let sigmap = u8_at(p, 0);
-                if sigmap == 0 {
-                    return Err(Error::Malformed {
-                        packet_type,
-                        what: Malformed::ZeroSigmap,
-                    });
-                }
+                // Sigmap 0 is what the official host library sends for it;
+                // the device answers ERROR -3. A request all the same.
                 Self::GetBlocks(GetBlocks {
-                    sigmap,
+                    sigmap: u8_at(p, 0),
                     max_blocks: u8_at(p, 1),
                 })
             }

@@ -10,6 +10,7 @@ use super::command::{parse_command, Command};
 use super::dialect::Dialect;
 use super::error::Error;
 use super::module::{ModuleCommand, ModuleType};
+use super::quirk::{command_quirk, report_quirk, Quirk};
 use super::report::{parse_report_with, report_known, Report};
 use super::wire::{MAX_COMMAND_FRAME, MAX_FRAME_LEN, MAX_REPORT_FRAME};
 use crate::{Encode, EncodeError};
@@ -34,13 +35,13 @@ const NO_COMMAND: Command<'static> = Command::GetFirmwareVersion;
 /// See [`NO_COMMAND`].
 const NO_REPORT: Report<'static> = Report::LoopBack { byte: 0 };
 
-/// The first of `command`'s home dialects that accepts `frame`, its bytes.
+/// The first of `command`'s home dialects that reads `frame`, its bytes, as
+/// `command`; else the first that accepts it.
 fn command_dialect(command: &Command<'_>, frame: &[u8]) -> Dialect {
-    command
-        .home_dialects()
-        .iter()
-        .copied()
-        .find(|&d| parse_command(d, frame).is_ok())
+    let home = command.home_dialects().iter().copied();
+    home.clone()
+        .find(|&d| parse_command(d, frame).as_ref() == Ok(command))
+        .or_else(|| home.clone().find(|&d| parse_command(d, frame).is_ok()))
         .unwrap_or_default()
 }
 
@@ -55,15 +56,21 @@ fn report_dialect(report: &Report<'_>, frame: &[u8]) -> (Dialect, bool) {
                 .unwrap_or_default(),
             true,
         ),
-        _ => (
-            report
-                .home_dialects()
-                .iter()
-                .copied()
-                .find(|&d| parse_report_with(d, false, frame).is_ok())
-                .unwrap_or_default(),
-            false,
-        ),
+        // The first that reads the frame as `report` (a mirte 1.2 VEML6040
+        // reading is little-endian, mirte 1.3's big-endian), else the first
+        // that accepts it.
+        _ => {
+            let home = report.home_dialects().iter().copied();
+            let dialect = home
+                .clone()
+                .find(|&d| parse_report_with(d, false, frame).as_ref() == Ok(report))
+                .or_else(|| {
+                    home.clone()
+                        .find(|&d| parse_report_with(d, false, frame).is_ok())
+                })
+                .unwrap_or_default();
+            (dialect, false)
+        }
     }
 }
 
@@ -123,9 +130,32 @@ impl CommandBuf {
         Self { bytes, dialect }
     }
 
+    /// The owned form of `command`, parsed from `frame`: the frame's own
+    /// bytes (a quirky frame is kept as it was), valid in the first of the
+    /// command's home dialects that accepts them.
+    pub(crate) fn from_frame(frame: &[u8], command: &Command<'_>) -> Self {
+        match copy_frame(frame) {
+            Some(bytes) => Self {
+                bytes,
+                dialect: command_dialect(command, frame),
+            },
+            None => Self::from_parsed(command),
+        }
+    }
+
     /// The command.
     pub fn message(&self) -> Command<'_> {
         parse_command(self.dialect, self.frame()).unwrap_or(NO_COMMAND)
+    }
+
+    /// What is dubious in the frame read in [`dialect`](Self::dialect), if
+    /// anything: it came from a real host and the encoder would refuse it
+    /// (see [`Quirk`]). A decoder's owned form has the first of the
+    /// command's dialects that reads the bytes as that command, mirte 1.3
+    /// first; a [`CaptureContext`](super::CaptureContext) sets the
+    /// decoder's.
+    pub fn quirk(&self) -> Option<Quirk> {
+        command_quirk(self.dialect, self.frame())
     }
 
     /// The frame's bytes.
@@ -202,9 +232,31 @@ impl ReportBuf {
         }
     }
 
+    /// See [`CommandBuf::from_frame`].
+    pub(crate) fn from_frame(frame: &[u8], report: &Report<'_>) -> Self {
+        match copy_frame(frame) {
+            Some(bytes) => {
+                let (dialect, lenient) = report_dialect(report, frame);
+                Self {
+                    bytes,
+                    dialect,
+                    lenient,
+                }
+            }
+            None => Self::from_parsed(report),
+        }
+    }
+
     /// The report.
     pub fn message(&self) -> Report<'_> {
         parse_report_with(self.dialect, self.lenient, self.frame()).unwrap_or(NO_REPORT)
+    }
+
+    /// What is dubious in the frame read in [`dialect`](Self::dialect), if
+    /// anything: it came from a real Pico and the encoder would refuse it
+    /// (see [`Quirk`]).
+    pub fn quirk(&self) -> Option<Quirk> {
+        report_quirk(self.dialect, self.frame())
     }
 
     /// The frame's bytes.
@@ -311,6 +363,24 @@ impl MessageBuf {
         match self.direction {
             Direction::Command => Message::Command(self.command_reading().unwrap_or(NO_COMMAND)),
             Direction::Report => Message::Report(self.report_reading().unwrap_or(NO_REPORT)),
+        }
+    }
+
+    /// What is dubious in the frame read in its direction, if anything (see
+    /// [`Quirk`]).
+    pub fn quirk(&self) -> Option<Quirk> {
+        match self.direction {
+            Direction::Command => command_quirk(self.dialect, self.frame()),
+            Direction::Report => report_quirk(self.dialect, self.frame()),
+        }
+    }
+
+    /// The owned form of `message`, parsed from `frame`: the frame's own
+    /// bytes (see [`CommandBuf::from_frame`]).
+    pub(crate) fn from_frame(frame: &[u8], message: &Message<'_>) -> Self {
+        match message {
+            Message::Command(c) => CommandBuf::from_frame(frame, c).into(),
+            Message::Report(r) => ReportBuf::from_frame(frame, r).into(),
         }
     }
 

@@ -4,6 +4,7 @@ use super::dialect::Dialect;
 use super::error::{ensure, Error};
 use super::list::List;
 use super::module::{ModuleNew, MODULE_INIT_MAX};
+use super::quirk::command_quirk;
 use super::sensor::SensorNew;
 use super::wire::{
     analog_pin_ok, command_id, split_frame, Reader, Writer, COMMAND_PAYLOAD_MAX, MAX_COMMAND_FRAME,
@@ -18,7 +19,7 @@ use command_id as id;
 pub(crate) const fn command_known(dialect: Dialect, id: u8) -> bool {
     match dialect {
         Dialect::Mirte13 => id <= id::BOOTLOADER_RESET,
-        Dialect::Mirte12 => id <= id::PING && id != id::SENSOR_NEW,
+        Dialect::Mirte12 => id <= id::PING,
         Dialect::Upstream11 => id <= id::SPI_CS_CONTROL,
     }
 }
@@ -32,7 +33,9 @@ pub(crate) const fn command_len_range(dialect: Dialect, id: u8) -> Option<(u8, u
     let up = matches!(dialect, Dialect::Upstream11);
     Some(match id {
         id::SET_PIN_MODE => (3, 6),
-        id::PWM_WRITE if matches!(dialect, Dialect::Mirte13) => (4, 28),
+        // Up to 9 pins and, as a real host may send, 1 or 2 trailing bytes
+        // that the firmware ignores (it takes (LEN - 1) / 3 pins).
+        id::PWM_WRITE if matches!(dialect, Dialect::Mirte13) => (4, 30),
         id::PWM_WRITE => (4, 4),
         id::SERVO_ATTACH => (2, 6),
         id::SERVO_WRITE | id::I2C_BEGIN | id::SPI_READ_BLOCKING => (4, 4),
@@ -47,6 +50,7 @@ pub(crate) const fn command_len_range(dialect: Dialect, id: u8) -> Option<(u8, u
         id::FILL_NEO_PIXELS | id::SPI_SET_FORMAT => (5, 5),
         id::ENCODER_NEW if matches!(dialect, Dialect::Mirte12) => (4, 4),
         id::ENCODER_NEW => (5, 5),
+        id::SENSOR_NEW if matches!(dialect, Dialect::Mirte12) => (3, 9),
         id::SENSOR_NEW => (3, 10),
         id::MODULE_NEW => (3, 30),
         id::MODULE_DATA => (2, 30),
@@ -417,7 +421,8 @@ pub enum Command<'a> {
         /// byte; `None` in mirte 1.2, whose frame does not.
         pulls: Option<Pulls>,
     },
-    /// 31 SENSOR_NEW (mirte 1.3).
+    /// 31 SENSOR_NEW (mirte 1.3, and mirte 1.2's own layout
+    /// [`SensorNew::AddMirte12`]).
     SensorNew(SensorNew),
     /// 32 PING (mirte only): answered by report 32.
     Ping {
@@ -525,6 +530,11 @@ impl<'a> Command<'a> {
         // The decoder is the one definition of a valid frame: the encoder
         // emits nothing it would reject.
         parse_command(dialect, frame).map_err(Error::into_encode_error)?;
+        // ... nor anything it flags: those frames are a real host's, never
+        // what robowire sends.
+        if let Some(quirk) = command_quirk(dialect, frame) {
+            return Err(quirk.into_encode_error());
+        }
         if let Some(dst) = out.get_mut(..n) {
             dst.copy_from_slice(frame);
         }
@@ -555,6 +565,9 @@ impl<'a> Command<'a> {
                     max: 1,
                 })
             }
+            Command::SensorNew(s) if s.dialect() != dialect => Err(EncodeError::Inconsistent {
+                what: "SENSOR_NEW has mirte 1.3's layout in mirte 1.3 only, mirte 1.2's in mirte 1.2 only",
+            }),
             Command::EncoderNew { pulls: Some(_), .. } if dialect != Dialect::Mirte13 => {
                 Err(EncodeError::Inconsistent {
                     what: "mirte 1.2 firmware has no encoder pull setting",
@@ -609,6 +622,8 @@ impl<'a> Command<'a> {
             }
             Command::EncoderNew { pulls: Some(_), .. } => &[Dialect::Mirte13],
             Command::EncoderNew { pulls: None, .. } => &[Dialect::Mirte12],
+            Command::SensorNew(SensorNew::AddMirte12 { .. }) => &[Dialect::Mirte12],
+            Command::SensorNew(_) => &[Dialect::Mirte13],
             _ => &Dialect::ALL,
         }
     }
@@ -897,25 +912,33 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
             ensure(pin_ok, cmd, "pin")?;
             Command::SetPinMode { pin, mode }
         }
+        // The firmware drives any non-zero level high (flagged as a quirk).
         id::DIGITAL_WRITE => Command::DigitalWrite {
             pin: r.pin("pin")?,
-            value: r.flag("value")?,
+            value: r.u8()? != 0,
         },
         id::PWM_WRITE => {
             let mut pins = PwmPins::new();
-            while r.remaining() > 0 {
+            // Whole triples; 1 or 2 trailing bytes (mirte 1.3's LEN range
+            // allows them) are ignored as the firmware ignores them, and
+            // flagged as a quirk.
+            while r.remaining() >= 3 {
                 let pin = PwmPin {
                     pin: r.pin("pin")?,
                     value: r.u16()?,
                 };
                 pins.push(pin).map_err(|_| r.bad_length())?;
             }
+            r.rest();
             Command::PwmWrite(pins)
         }
         id::MODIFY_REPORTING => {
             let kind = r.u8()?;
             let pin = r.u8()?;
-            let digital_ok = dialect != Dialect::Mirte13 && pin < PIN_COUNT;
+            // Digital pins in mirte 1.3 are what a real host sends, although
+            // the firmware indexes them as pin - 26: accepted, and flagged as
+            // a quirk.
+            let digital_ok = pin < PIN_COUNT;
             let m = match kind {
                 0 if pin == 0 => ModifyReporting::DisableAll,
                 1 if analog_pin_ok(dialect, pin) => ModifyReporting::EnableAnalog { pin },
@@ -1101,9 +1124,11 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
         },
         id::SET_SCAN_DELAY => Command::SetScanDelay { delay_ms: r.u8()? },
         id::ENCODER_NEW => {
+            // The firmware sets up a quadrature encoder for any type but 1;
+            // type 3 is accepted as that, and flagged as a quirk.
             let kind = match r.u8()? {
                 1 => EncoderKind::Single,
-                2 => EncoderKind::Quadrature,
+                2 | 3 => EncoderKind::Quadrature,
                 _ => {
                     return Err(Error::OutOfRange {
                         id: cmd,
@@ -1131,7 +1156,7 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
                 pulls,
             }
         }
-        id::SENSOR_NEW => Command::SensorNew(SensorNew::parse(r)?),
+        id::SENSOR_NEW => Command::SensorNew(SensorNew::parse(r, dialect)?),
         id::PING => Command::Ping { counter: r.u8()? },
         id::MODULE_NEW => Command::ModuleNew(ModuleNew::parse(r)?),
         id::MODULE_DATA => {

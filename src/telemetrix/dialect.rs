@@ -9,8 +9,10 @@ pub enum Dialect {
     /// ids 0..=38, sensors, modules, multi-pin PWM, analog pins as GPIO 26..=30.
     #[default]
     Mirte13,
-    /// mirte firmware 1.2: command ids 0..=32 without SENSOR_NEW (its 1.2
-    /// layout is not covered) and without the module stubs 33/34; single-pin
+    /// mirte firmware 1.2: command ids 0..=32, with its own SENSOR_NEW
+    /// layout ([`SensorNew::AddMirte12`](super::SensorNew::AddMirte12)) and
+    /// report 20 (the VEML6040, little-endian), without the module stubs
+    /// 33/34; single-pin
     /// PWM, ENCODER_NEW without `pulls`, analog pins as ADC 0..=4, the sonar
     /// report as metres and centimetres.
     Mirte12,

@@ -191,15 +191,24 @@ impl Visit for Message<'_> {
     }
 }
 
+/// After a frame's fields: `quirk`, when the frame has one.
+fn quirk(w: &mut W<'_>, quirk: Option<super::quirk::Quirk>) {
+    if let Some(q) = quirk {
+        w.s("quirk", q.name());
+    }
+}
+
 impl Visit for CommandBuf {
     fn visit(&self, w: &mut W<'_>) {
         self.message().visit(w);
+        quirk(w, self.quirk());
     }
 }
 
 impl Visit for ReportBuf {
     fn visit(&self, w: &mut W<'_>) {
         self.message().visit(w);
+        quirk(w, self.quirk());
     }
 }
 
@@ -222,6 +231,7 @@ impl Visit for MessageBuf {
             }
             .visit(w),
         }
+        quirk(w, self.quirk());
     }
 }
 
@@ -440,6 +450,16 @@ impl Visit for CommandView<'_, '_> {
                 w.type_byte("sensor_type", sensor_type, SensorType::NAMES);
             }
             Command::SensorNew(SensorNew::Add {
+                sensor_num,
+                sensor_type,
+                settings,
+            }) => {
+                w.s("subtype", "add");
+                w.u("sensor_num", sensor_num);
+                w.s("sensor_type", sensor_type.name());
+                w.bytes("settings", &settings);
+            }
+            Command::SensorNew(SensorNew::AddMirte12 {
                 sensor_num,
                 sensor_type,
                 settings,

@@ -37,6 +37,8 @@ pub trait Side: sealed::Sealed + Copy + Eq + core::hash::Hash + core::fmt::Debug
     fn parse(dialect: Dialect, lenient: bool, frame: &[u8]) -> Result<Self::Message<'_>, Error>;
     /// The owned form of a message.
     fn to_owned(message: Self::Message<'_>) -> Self::Owned;
+    /// The owned form of a message parsed from `frame`, keeping its bytes.
+    fn to_owned_from(frame: &[u8], message: Self::Message<'_>) -> Self::Owned;
 }
 
 impl Side for Host {
@@ -52,6 +54,10 @@ impl Side for Host {
     fn to_owned(message: Report<'_>) -> ReportBuf {
         ReportBuf::from_parsed(&message)
     }
+
+    fn to_owned_from(frame: &[u8], message: Report<'_>) -> ReportBuf {
+        ReportBuf::from_frame(frame, &message)
+    }
 }
 
 impl Side for Device {
@@ -66,6 +72,10 @@ impl Side for Device {
 
     fn to_owned(message: Command<'_>) -> CommandBuf {
         CommandBuf::from_parsed(&message)
+    }
+
+    fn to_owned_from(frame: &[u8], message: Command<'_>) -> CommandBuf {
+        CommandBuf::from_frame(frame, &message)
     }
 }
 
@@ -90,6 +100,10 @@ impl Side for Both {
 
     fn to_owned(message: Message<'_>) -> MessageBuf {
         MessageBuf::from(&message)
+    }
+
+    fn to_owned_from(frame: &[u8], message: Message<'_>) -> MessageBuf {
+        MessageBuf::from_frame(frame, &message)
     }
 }
 
@@ -116,6 +130,13 @@ fn skip_zeros(bytes: &[u8]) -> usize {
 pub struct Framing<S> {
     dialect: Dialect,
     lenient: bool,
+    /// Commands framed as the firmware frames them (see
+    /// [`Framing::as_firmware`]).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "core::ops::Not::not")
+    )]
+    firmware: bool,
     #[cfg_attr(feature = "serde", serde(skip))]
     side: PhantomData<S>,
 }
@@ -126,6 +147,7 @@ impl<S: Side> Framing<S> {
         Self {
             dialect: Dialect::Mirte13,
             lenient: false,
+            firmware: false,
             side: PhantomData,
         }
     }
@@ -146,7 +168,10 @@ impl<S: Side> Framing<S> {
         self.lenient
     }
 
-    fn check_command(&self, candidate: &[u8]) -> Check<Error> {
+    fn check_command(&self, candidate: &[u8], at_end: bool) -> Check<Error> {
+        if self.firmware {
+            return firmware_frame(candidate, at_end);
+        }
         let (len, cid) = match candidate {
             [] => return Check::Need(1),
             [_] => return Check::Need(2),
@@ -218,7 +243,7 @@ impl<S: Side> Framing<S> {
     /// reject it, undecided while either still needs bytes. Both read the
     /// same `LEN`, so an accepted frame has one length.
     fn check_both(&self, candidate: &[u8]) -> Check<Error> {
-        let command = self.check_command(candidate);
+        let command = self.check_command(candidate, false);
         let report = self.check_report(candidate, self.lenient);
         match (command, report) {
             (Check::Frame(n), _) => Check::Frame(n),
@@ -249,6 +274,83 @@ impl Framing<Host> {
             lenient: true,
             ..self
         }
+    }
+}
+
+/// The firmware's receiver (spec §2.2, `get_next_command`): after a length
+/// byte 1..=30 (`find_start` has dropped `00` and anything above 30, as the
+/// firmware does), the next `LEN` bytes are a command, whatever they hold.
+/// At the end of the input every candidate lies inside an unfinished frame
+/// (a whole one was emitted as soon as it was complete), whose bytes the
+/// firmware discards after its 100 ms timeout: none of them is a frame.
+fn firmware_frame(candidate: &[u8], at_end: bool) -> Check<Error> {
+    if at_end {
+        return Check::Need(candidate.len() + 1);
+    }
+    match candidate.first() {
+        None => Check::Need(1),
+        Some(&len) => {
+            let total = usize::from(len) + 1;
+            if candidate.len() < total {
+                Check::Need(total)
+            } else {
+                Check::Frame(total)
+            }
+        }
+    }
+}
+
+impl Framing<Device> {
+    /// Frame commands exactly as the Pico's firmware does (spec §2.2), to
+    /// reconstruct what the device ran: a length byte `00` or above 30 is
+    /// dropped, and any other one is trusted: the next `LEN` bytes are one
+    /// command, which the firmware runs whatever they hold. Such a frame
+    /// that is not a valid command is reported as an error (counted in
+    /// [`Stats::malformed`](crate::Stats::malformed)) and consumed whole,
+    /// never rescanned, as the firmware never rescans: a byte lost or
+    /// inserted makes the decoder lose the same frames the firmware loses
+    /// and find the same false ones.
+    ///
+    /// The default framing is robust instead: it checks every candidate
+    /// (id, `LEN`, fields) and resyncs byte by byte, so it finds the frames
+    /// the host meant. At the end of the input an unfinished frame is
+    /// reported as truncated (once per length byte inside it, as the decoder
+    /// looks on), and nothing in it is decoded: the firmware discards it
+    /// after 100 ms. What this mode does not model: that timeout inside the
+    /// stream (a byte stream has no timing), the
+    /// stale bytes a short command reads from the never-cleared buffer, and
+    /// the blocking, unchecked receivers of mirte 1.2 and upstream 1.1
+    /// (their framing is taken to be mirte 1.3's).
+    ///
+    /// ```
+    /// use robowire::telemetrix::{device_decoder, Command, DeviceDecoder, Framing};
+    ///
+    /// // PING 7, STOP_ALL_REPORTS, GET_FIRMWARE_VERSION, with the 07 lost.
+    /// let bytes = [0x02, 0x20, 0x01, 0x0f, 0x01, 0x05];
+    /// // The firmware reads PING 1 (STOP's LEN byte as the counter), then a
+    /// // LEN of 15 (STOP's id) that swallows GET_FIRMWARE_VERSION.
+    /// let mut firmware = DeviceDecoder::new(Framing::new().as_firmware());
+    /// let ran: Vec<_> = firmware.feed(&bytes).flatten().map(|f| f.message).collect();
+    /// assert_eq!(ran.len(), 1);
+    /// assert_eq!(ran[0].message(), Command::Ping { counter: 1 });
+    /// assert!(firmware.flush().next().unwrap().is_err()); // 15 bytes awaited
+    /// // The robust decoder resyncs and finds GET_FIRMWARE_VERSION.
+    /// let mut robust = device_decoder();
+    /// let found: Vec<_> = robust.feed(&bytes).flatten().map(|f| f.message).collect();
+    /// assert_eq!(found.len(), 2);
+    /// assert_eq!(found[1].message(), Command::GetFirmwareVersion);
+    /// ```
+    pub const fn as_firmware(self) -> Self {
+        Self {
+            firmware: true,
+            ..self
+        }
+    }
+
+    /// Whether commands are framed as the firmware frames them (see
+    /// [`as_firmware`](Framing::as_firmware)).
+    pub const fn is_as_firmware(&self) -> bool {
+        self.firmware
     }
 }
 
@@ -289,10 +391,10 @@ impl<S: Side> stream::FrameRules for Framing<S> {
         }
     }
 
-    fn check(&self, candidate: &[u8], _at_end: bool) -> Check<Error> {
+    fn check(&self, candidate: &[u8], at_end: bool) -> Check<Error> {
         match (S::COMMANDS, S::REPORTS) {
             (true, true) => self.check_both(candidate),
-            (true, false) => self.check_command(candidate),
+            (true, false) => self.check_command(candidate, at_end),
             _ => self.check_report(candidate, self.lenient),
         }
     }
@@ -315,6 +417,10 @@ impl<S: Side> stream::FrameRules for Framing<S> {
 
     fn to_owned(message: S::Message<'_>) -> S::Owned {
         S::to_owned(message)
+    }
+
+    fn to_owned_from(frame: &[u8], message: S::Message<'_>) -> S::Owned {
+        S::to_owned_from(frame, message)
     }
 }
 

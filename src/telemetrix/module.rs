@@ -759,7 +759,9 @@ pub enum ModuleReport<'a> {
     },
     /// SSD1306: a request was refused because the display is disabled.
     Ssd1306Disabled {
-        /// Subtype of the refused request (0..=3).
+        /// Subtype of the refused request, echoed: 0..=3, or whatever a
+        /// request carried ([`Quirk::EchoedRequestByte`](super::Quirk::EchoedRequestByte);
+        /// the encoder sends 0..=3 only).
         request_sub: u8,
     },
 }
@@ -876,8 +878,9 @@ impl<'a> ModuleReport<'a> {
                     })
                 }
                 2 => {
+                    // The firmware echoes the request's subtype byte, whatever
+                    // it was: accepted, and flagged as a quirk above 3.
                     let request_sub = r.u8()?;
-                    ensure(request_sub <= 3, id, "request_sub")?;
                     ensure(r.u8()? == 254, id, "disabled marker")?;
                     Ok(ModuleReport::Ssd1306Disabled { request_sub })
                 }

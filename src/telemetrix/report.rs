@@ -3,6 +3,7 @@
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
 use super::module::{module_report_len_ok, ModuleReport};
+use super::quirk::report_quirk;
 use super::sensor::{SensorReading, SensorType};
 use super::wire::{analog_pin_ok, report_id, split_frame, Reader, Writer, MAX_REPORT_FRAME};
 use crate::encode::check_room;
@@ -24,8 +25,8 @@ pub(crate) const fn report_known(dialect: Dialect, id: u8) -> bool {
         | id::DHT
         | id::SPI => true,
         id::I2C_READ_FAILED | id::ENCODER | id::PONG | id::DEBUG_PRINT => dialect.is_mirte(),
-        id::SENSOR
-        | id::SENSOR_MAIN
+        id::SENSOR => dialect.is_mirte(),
+        id::SENSOR_MAIN
         | id::MODULE_MAIN
         | id::MODULE
         | id::GET_ID
@@ -82,6 +83,11 @@ pub(crate) fn report_len_ok(dialect: Dialect, len: u8, frame: &[u8]) -> bool {
         id::SPI => match at(3) {
             None => (3..=3 + SPI_READ_MAX).contains(&len),
             Some(n) => n <= SPI_READ_MAX && len == 3 + n,
+        },
+        // mirte 1.2 reports its one sensor, the VEML6040 (spec §10.1).
+        id::SENSOR if dialect == Dialect::Mirte12 => match at(3) {
+            None => len == 11,
+            Some(t) => t == SensorType::Veml6040.as_u8() && len == 11,
         },
         id::SENSOR => match at(3) {
             None => (3..=56).contains(&len),
@@ -505,6 +511,10 @@ impl Report<'_> {
         // The decoder is the one definition of a valid frame.
         let lenient = matches!(self, Report::Unknown { .. });
         parse_report_with(dialect, lenient, frame).map_err(Error::into_encode_error)?;
+        // ... nor anything it flags.
+        if let Some(quirk) = report_quirk(dialect, frame) {
+            return Err(quirk.into_encode_error());
+        }
         if let Some(dst) = out.get_mut(..n) {
             dst.copy_from_slice(frame);
         }
@@ -562,7 +572,7 @@ impl Report<'_> {
         w.patch_len();
     }
 
-    fn write_payload(&self, w: &mut Writer<'_>, _dialect: Dialect) {
+    fn write_payload(&self, w: &mut Writer<'_>, dialect: Dialect) {
         match self {
             Report::LoopBack { byte } => w.u8(*byte),
             Report::Digital { pin, value } => {
@@ -643,7 +653,7 @@ impl Report<'_> {
                 reading,
             } => {
                 w.bytes(&[*sensor_num, reading.sensor_type().as_u8()]);
-                reading.write(w);
+                reading.write(w, dialect);
             }
             Report::SensorSupported {
                 sensor_type,
@@ -875,7 +885,7 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Report<'a>,
             })?;
             Report::Sensor {
                 sensor_num,
-                reading: SensorReading::parse(r, sensor_type)?,
+                reading: SensorReading::parse(r, sensor_type, dialect)?,
             }
         }
         id::SENSOR_MAIN => {

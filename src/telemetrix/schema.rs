@@ -27,7 +27,7 @@ use super::module::{
 };
 use super::report::{Report, Sonar, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
 use super::sensor::{SensorNew, SensorReading, SensorType};
-use super::wire::{COMMAND_PAYLOAD_MAX, MAX_REPORT_FRAME};
+use super::wire::{COMMAND_PAYLOAD_MAX, MAX_REPORT_FRAME, PIN_COUNT};
 use crate::serde_support::{read_f32, read_int, serialize_f32, Fields, Value};
 
 // ---------------------------------------------------------------- Serialize
@@ -212,6 +212,14 @@ fn read_line(value: &Value, dialect: Dialect, want: Want) -> Result<MessageBuf, 
             ));
         }
     }
+    // A frame flagged with a quirk came from a real peer; the encoder
+    // refuses to send one.
+    if let Some(quirk) = fields.optional("quirk") {
+        return Err(format!(
+            "cannot encode {kind}: the decoder flagged its frame `{}`, which the encoder refuses",
+            quirk.as_str().unwrap_or("?")
+        ));
+    }
     let mut bytes = Vec::new();
     let encoded = if Command::NAMES.contains(&kind) && want != Want::Reports {
         let command = read_command(kind, &mut fields, dialect, &mut bytes)?;
@@ -323,6 +331,24 @@ fn i8_(f: &mut Fields<'_>, key: &str) -> Result<i8, String> {
 
 fn i16_(f: &mut Fields<'_>, key: &str) -> Result<i16, String> {
     f.int(key, -32768, 32767).map(|v| v as i16)
+}
+
+/// An integer `min..=max` that fits a byte.
+fn ranged(f: &mut Fields<'_>, key: &str, min: u8, max: u8) -> Result<u8, String> {
+    f.int(key, i64::from(min), i64::from(max)).map(|v| v as u8)
+}
+
+/// A GPIO number, `0..=29`.
+fn pin_(f: &mut Fields<'_>, key: &str) -> Result<u8, String> {
+    ranged(f, key, 0, PIN_COUNT - 1)
+}
+
+/// An analog pin `pin`: GPIO 26..=30 in mirte 1.3, ADC 0..=4 before.
+fn analog_pin(f: &mut Fields<'_>, dialect: Dialect) -> Result<u8, String> {
+    match dialect {
+        Dialect::Mirte13 => ranged(f, "pin", 26, 30),
+        Dialect::Mirte12 | Dialect::Upstream11 => ranged(f, "pin", 0, 4),
+    }
 }
 
 /// A flag: `true` or `false`.
@@ -484,8 +510,13 @@ fn read_command<'b>(
             byte: u8_(f, "byte")?,
         },
         "set_pin_mode" => {
-            let pin = u8_(f, "pin")?;
-            let mode = match name(f, "mode", PinMode::NAMES)? {
+            let mode = name(f, "mode", PinMode::NAMES)?;
+            let pin = if mode == 5 {
+                analog_pin(f, dialect)?
+            } else {
+                pin_(f, "pin")?
+            };
+            let mode = match mode {
                 m @ 0..=2 => PinMode::DigitalInput {
                     pull: [Pull::None, Pull::Up, Pull::Down][m],
                     report: flag(f, "report_enable")?,
@@ -500,13 +531,13 @@ fn read_command<'b>(
             Command::SetPinMode { pin, mode }
         }
         "digital_write" => Command::DigitalWrite {
-            pin: u8_(f, "pin")?,
+            pin: pin_(f, "pin")?,
             value: digital_value(f)?,
         },
         "pwm_write" => {
             let pins = objects(f, "pins", |p| {
                 Ok(PwmPin {
-                    pin: u8_(p, "pin")?,
+                    pin: pin_(p, "pin")?,
                     value: u16_(p, "value")?,
                 })
             })?;
@@ -520,23 +551,23 @@ fn read_command<'b>(
             Command::ModifyReporting(match action {
                 0 => ModifyReporting::DisableAll,
                 1 => ModifyReporting::EnableAnalog {
-                    pin: u8_(f, "pin")?,
+                    pin: analog_pin(f, dialect)?,
                 },
                 2 => ModifyReporting::EnableDigital {
-                    pin: u8_(f, "pin")?,
+                    pin: pin_(f, "pin")?,
                 },
                 3 => ModifyReporting::DisableAnalog {
-                    pin: u8_(f, "pin")?,
+                    pin: analog_pin(f, dialect)?,
                 },
                 _ => ModifyReporting::DisableDigital {
-                    pin: u8_(f, "pin")?,
+                    pin: pin_(f, "pin")?,
                 },
             })
         }
         "get_firmware_version" => Command::GetFirmwareVersion,
         "get_pico_unique_id" => Command::GetUniqueId,
         "servo_attach" => {
-            let pin = u8_(f, "pin")?;
+            let pin = pin_(f, "pin")?;
             let pulse_range = match (f.has("min_us"), f.has("max_us")) {
                 (false, false) => None,
                 _ => Some((u16_(f, "min_us")?, u16_(f, "max_us")?)),
@@ -544,64 +575,64 @@ fn read_command<'b>(
             Command::ServoAttach { pin, pulse_range }
         }
         "servo_write" => Command::ServoWrite {
-            pin: u8_(f, "pin")?,
+            pin: pin_(f, "pin")?,
             pulse_us: u16_(f, "pulse_us")?,
         },
         "servo_detach" => Command::ServoDetach {
-            pin: u8_(f, "pin")?,
+            pin: pin_(f, "pin")?,
         },
         "i2c_begin" => Command::I2cBegin {
-            port: u8_(f, "port")?,
-            sda: u8_(f, "sda")?,
-            scl: u8_(f, "scl")?,
+            port: ranged(f, "port", 0, 1)?,
+            sda: pin_(f, "sda")?,
+            scl: pin_(f, "scl")?,
         },
         "i2c_read" if upstream => Command::I2cReadUpstream {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             reg: u8_(f, "reg")?,
-            len: u8_(f, "n")?,
+            len: ranged(f, "n", 1, 57)?,
             no_stop: u8_(f, "no_stop")?,
         },
         "i2c_read" => Command::I2cRead {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             msg_id: u8_(f, "msg_id")?,
             reg: u8_(f, "reg")?,
-            len: u8_(f, "n")?,
+            len: ranged(f, "n", 1, 57)?,
             no_stop: u8_(f, "no_stop")?,
         },
         "i2c_write" if upstream => Command::I2cWriteUpstream {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             no_stop: u8_(f, "no_stop")?,
             data: bytes_in(f, "data", buf)?,
         },
         "i2c_write" => Command::I2cWrite {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             msg_id: u8_(f, "msg_id")?,
             no_stop: u8_(f, "no_stop")?,
             data: bytes_in(f, "data", buf)?,
         },
         "sonar_new" => Command::SonarNew {
-            trig: u8_(f, "trig")?,
-            echo: u8_(f, "echo")?,
+            trig: pin_(f, "trig")?,
+            echo: pin_(f, "echo")?,
         },
         "dht_new" => Command::DhtNew {
-            pin: u8_(f, "pin")?,
+            pin: pin_(f, "pin")?,
         },
         "stop_all_reports" => Command::StopAllReports,
         "enable_all_reports" => Command::EnableAllReports,
         "reset_data" => Command::ResetData,
         "reset_board" => Command::ResetBoard,
         "initialize_neo_pixels" => Command::InitNeoPixels {
-            pin: u8_(f, "pin")?,
-            count: u8_(f, "count")?,
+            pin: pin_(f, "pin")?,
+            count: ranged(f, "count", 0, 100)?,
             rgb: rgb(f)?,
         },
         "show_neo_pixels" => Command::ShowNeoPixels,
         "set_neo_pixel" => Command::SetNeoPixel {
-            index: u8_(f, "index")?,
+            index: ranged(f, "index", 0, 99)?,
             rgb: rgb(f)?,
             auto_show: flag(f, "auto_show")?,
         },
@@ -617,30 +648,30 @@ fn read_command<'b>(
             auto_show: flag(f, "auto_show")?,
         },
         "spi_init" => Command::SpiInit {
-            port: u8_(f, "port")?,
-            pin_a: u8_(f, "pin_a")?,
-            pin_b: u8_(f, "pin_b")?,
-            clk: u8_(f, "clk")?,
-            freq_hz: f.int("freq_hz", 0, i64::from(u32::MAX))? as u32,
+            port: ranged(f, "port", 0, 1)?,
+            pin_a: pin_(f, "pin_a")?,
+            pin_b: pin_(f, "pin_b")?,
+            clk: pin_(f, "clk")?,
+            freq_hz: f.int("freq_hz", 1, i64::from(u32::MAX))? as u32,
             cs_pins: bytes_in(f, "cs_pins", buf)?,
         },
         "spi_write_blocking" => Command::SpiWrite {
-            port: u8_(f, "port")?,
+            port: ranged(f, "port", 0, 1)?,
             data: bytes_in(f, "data", buf)?,
         },
         "spi_read_blocking" => Command::SpiRead {
-            port: u8_(f, "port")?,
-            len: u8_(f, "n")?,
+            port: ranged(f, "port", 0, 1)?,
+            len: ranged(f, "n", 0, 60)?,
             tx_fill: u8_(f, "tx_fill")?,
         },
         "spi_set_format" => Command::SpiSetFormat {
-            port: u8_(f, "port")?,
-            data_bits: u8_(f, "data_bits")?,
+            port: ranged(f, "port", 0, 1)?,
+            data_bits: ranged(f, "data_bits", 4, 16)?,
             cpol: level(f, "cpol")?,
             cpha: level(f, "cpha")?,
         },
         "spi_cs_control" => Command::SpiCsControl {
-            cs_pin: u8_(f, "cs_pin")?,
+            cs_pin: pin_(f, "cs_pin")?,
             high: level(f, "level")?,
         },
         "set_scan_delay" => Command::SetScanDelay {
@@ -651,8 +682,8 @@ fn read_command<'b>(
                 0 => EncoderKind::Single,
                 _ => EncoderKind::Quadrature,
             },
-            pin_a: u8_(f, "pin_a")?,
-            pin_b: u8_(f, "pin_b")?,
+            pin_a: pin_(f, "pin_a")?,
+            pin_b: pin_(f, "pin_b")?,
             // Only mirte 1.3 has the pulls byte; elsewhere `pulls` is an
             // unknown field.
             pulls: if dialect == Dialect::Mirte13 {
@@ -670,6 +701,22 @@ fn read_command<'b>(
             0 => SensorNew::Check {
                 sensor_type: type_byte(f, "sensor_type", SensorType::NAMES)?,
             },
+            // mirte 1.2's own layout: the settings bytes sent, 0 to 6.
+            _ if dialect == Dialect::Mirte12 => {
+                let sensor_num = u8_(f, "sensor_num")?;
+                let sensor_type = sensor_type(f)?;
+                let settings = bytes(f, "settings")?;
+                SensorNew::AddMirte12 {
+                    sensor_num,
+                    sensor_type,
+                    settings: List::from_slice(&settings).map_err(|_| {
+                        format!(
+                            "field `settings` must be an array of at most 6 bytes, found {} bytes",
+                            settings.len()
+                        )
+                    })?,
+                }
+            }
             _ => SensorNew::Add {
                 sensor_num: u8_(f, "sensor_num")?,
                 sensor_type: sensor_type(f)?,
@@ -915,12 +962,12 @@ fn read_report<'b>(
             byte: u8_(f, "byte")?,
         },
         "digital_report" => Report::Digital {
-            pin: u8_(f, "pin")?,
+            pin: pin_(f, "pin")?,
             value: digital_value(f)?,
         },
         "analog_report" => Report::Analog {
             pin: u8_(f, "pin")?,
-            value: u16_(f, "value")?,
+            value: f.int("value", 0, 4095)? as u16,
         },
         "firmware_version" => Report::FirmwareVersion {
             major: u8_(f, "major")?,
@@ -930,39 +977,39 @@ fn read_report<'b>(
             id: f.array("id", byte)?,
         },
         "i2c_write_report" => Report::I2cWrite {
-            port: u8_(f, "port")?,
+            port: ranged(f, "port", 0, 1)?,
             msg_id: u8_(f, "msg_id")?,
             result: i8_(f, "result")?,
         },
         "i2c_write_failed" => Report::I2cWriteFailed {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             stale: u8_(f, "stale")?,
         },
         "i2c_read_failed" => Report::I2cReadFailed {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             stale: u8_(f, "stale")?,
         },
         "i2c_read_report" if upstream => Report::I2cReadUpstream {
-            port: u8_(f, "port")?,
-            addr: u8_(f, "addr")?,
+            port: ranged(f, "port", 0, 1)?,
+            addr: ranged(f, "addr", 0, 0x7f)?,
             reg: u8_(f, "reg")?,
             data: bytes_in(f, "data", buf)?,
         },
         "i2c_read_report" => Report::I2cRead {
-            port: u8_(f, "port")?,
+            port: ranged(f, "port", 0, 1)?,
             msg_id: u8_(f, "msg_id")?,
             reg: u8_(f, "reg")?,
             data: bytes_in(f, "data", buf)?,
         },
         "sonar_distance" => Report::Sonar(match dialect {
             Dialect::Mirte13 => {
-                let trig = u8_(f, "trig")?;
+                let trig = pin_(f, "trig")?;
                 if f.has("echo") {
                     Sonar::WithEcho {
                         trig,
-                        echo: u8_(f, "echo")?,
+                        echo: pin_(f, "echo")?,
                         cm: sonar_cm(f)?,
                     }
                 } else {
@@ -973,29 +1020,29 @@ fn read_report<'b>(
                 }
             }
             Dialect::Mirte12 => Sonar::MetresCm {
-                trig: u8_(f, "trig")?,
+                trig: pin_(f, "trig")?,
                 m: u8_(f, "m")?,
                 cm: u8_(f, "cm")?,
             },
             Dialect::Upstream11 => Sonar::CmHundredths {
-                trig: u8_(f, "trig")?,
+                trig: pin_(f, "trig")?,
                 cm: u8_(f, "cm")?,
                 hundredths: u8_(f, "hundredths")?,
             },
         }),
         "dht_report" => Report::Dht {
-            pin: u8_(f, "pin")?,
+            pin: pin_(f, "pin")?,
             humidity: u8_(f, "hum_int")?,
             humidity_hundredths: u8_(f, "hum_hundredths")?,
             temp: i8_(f, "temp_int")?,
             temp_hundredths: i8_(f, "temp_hundredths")?,
         },
         "spi_report" => Report::Spi {
-            port: u8_(f, "port")?,
+            port: ranged(f, "port", 0, 1)?,
             data: bytes_in(f, "data", buf)?,
         },
         "encoder_report" => Report::Encoder {
-            pin: u8_(f, "pin_a")?,
+            pin: pin_(f, "pin_a")?,
             steps: i8_(f, "steps")?,
         },
         "sensor_report" => {

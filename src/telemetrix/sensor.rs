@@ -1,5 +1,6 @@
 //! The sensor subsystem: SENSOR_NEW (command 31) and reports 20/21 (spec §6).
 
+use super::dialect::Dialect;
 use super::error::{ensure, Error};
 use super::list::List;
 use super::wire::{Reader, Writer};
@@ -81,7 +82,8 @@ impl SensorType {
     }
 }
 
-/// SENSOR_NEW (command 31), mirte 1.3 layout.
+/// SENSOR_NEW (command 31): mirte 1.3's check and add, and mirte 1.2's add
+/// (spec §6, §10.1).
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SensorNew {
@@ -99,7 +101,23 @@ pub enum SensorNew {
         /// Settings, zero-padded to 6 bytes (layouts in [`SensorType`]).
         settings: [u8; 6],
     },
+    /// mirte 1.2 only: `num, type, settings…` with no subtype byte and 0 to 6
+    /// settings bytes (the firmware clears its buffer, so missing ones read
+    /// as 0). Types 0..=6; only the VEML6040 (4, settings `port`) is created.
+    /// The mirte 1.2 Python client adds a VEML6040 on port 1 with the short
+    /// form `04 1f 00 04 01`.
+    AddMirte12 {
+        /// Number echoed in its reports.
+        sensor_num: u8,
+        /// The type, [`SensorType::Gps`]..=[`SensorType::Ina226`].
+        sensor_type: SensorType,
+        /// The settings bytes sent, at most 6.
+        settings: List<u8, 6>,
+    },
 }
+
+/// The largest sensor type mirte 1.2 names (INA226); higher ones are ignored.
+const MIRTE12_MAX_TYPE: u8 = 6;
 
 impl SensorNew {
     /// An `Add` whose settings (at most 6 bytes) are zero-padded.
@@ -123,7 +141,23 @@ impl SensorNew {
         })
     }
 
-    pub(crate) fn parse(r: &mut Reader<'_>) -> Result<Self, Error> {
+    pub(crate) fn parse(r: &mut Reader<'_>, dialect: Dialect) -> Result<Self, Error> {
+        if dialect == Dialect::Mirte12 {
+            let sensor_num = r.u8()?;
+            let sensor_type = Some(r.u8()?)
+                .filter(|&t| t <= MIRTE12_MAX_TYPE)
+                .and_then(SensorType::from_u8)
+                .ok_or(Error::OutOfRange {
+                    id: r.id(),
+                    field: "sensor_type",
+                })?;
+            let settings = List::from_slice(r.rest()).map_err(|_| r.bad_length())?;
+            return Ok(SensorNew::AddMirte12 {
+                sensor_num,
+                sensor_type,
+                settings,
+            });
+        }
         match r.u8()? {
             0 => Ok(SensorNew::Check {
                 sensor_type: r.u8()?,
@@ -158,6 +192,22 @@ impl SensorNew {
                 w.bytes(&[1, sensor_num, sensor_type.as_u8()]);
                 w.bytes(&settings);
             }
+            SensorNew::AddMirte12 {
+                sensor_num,
+                sensor_type,
+                settings,
+            } => {
+                w.bytes(&[sensor_num, sensor_type.as_u8()]);
+                settings.iter().for_each(|&b| w.u8(b));
+            }
+        }
+    }
+
+    /// The dialect whose layout this is.
+    pub(crate) const fn dialect(&self) -> Dialect {
+        match self {
+            SensorNew::AddMirte12 { .. } => Dialect::Mirte12,
+            SensorNew::Check { .. } | SensorNew::Add { .. } => Dialect::Mirte13,
         }
     }
 }
@@ -280,7 +330,11 @@ impl SensorReading {
     }
 
     /// Parse the data after `sensor_num, sensor_type`.
-    pub(crate) fn parse(r: &mut Reader<'_>, sensor_type: SensorType) -> Result<Self, Error> {
+    pub(crate) fn parse(
+        r: &mut Reader<'_>,
+        sensor_type: SensorType,
+        dialect: Dialect,
+    ) -> Result<Self, Error> {
         Ok(match sensor_type {
             SensorType::Gps => {
                 return Err(Error::OutOfRange {
@@ -296,6 +350,16 @@ impl SensorReading {
                 quat: f32s(r)?,
             },
             SensorType::Vl53l0x => SensorReading::Vl53l0x { mm: r.u16()? },
+            // mirte 1.2 sends each colour register low byte first.
+            SensorType::Veml6040 if dialect == Dialect::Mirte12 => {
+                let mut le = || r.array().map(u16::from_le_bytes);
+                SensorReading::Veml6040 {
+                    r: le()?,
+                    g: le()?,
+                    b: le()?,
+                    w: le()?,
+                }
+            }
             SensorType::Veml6040 => SensorReading::Veml6040 {
                 r: r.u16()?,
                 g: r.u16()?,
@@ -332,7 +396,7 @@ impl SensorReading {
         })
     }
 
-    pub(crate) fn write(&self, w: &mut Writer<'_>) {
+    pub(crate) fn write(&self, w: &mut Writer<'_>, dialect: Dialect) {
         let floats = |w: &mut Writer<'_>, vs: &[f32]| vs.iter().for_each(|&v| w.f32(v));
         let ints = |w: &mut Writer<'_>, vs: &[i16]| vs.iter().for_each(|&v| w.i16(v));
         match self {
@@ -351,7 +415,11 @@ impl SensorReading {
             SensorReading::Vl53l0x { mm } => w.u16(*mm),
             SensorReading::Veml6040 { r, g, b, w: white } => {
                 for v in [*r, *g, *b, *white] {
-                    w.u16(v);
+                    if dialect == Dialect::Mirte12 {
+                        w.bytes(&v.to_le_bytes());
+                    } else {
+                        w.u16(v);
+                    }
                 }
             }
             SensorReading::Adxl345 { accel } => ints(w, accel),

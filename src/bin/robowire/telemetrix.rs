@@ -50,7 +50,10 @@ Then the fields, named after the spec: numbers as on the wire (signed where the
 spec says so), byte strings as arrays of numbers (data, extras, cs_pins, ...),
 levels (value, level, cpol, cpha, active_level) as 0/1, flags (report_enable,
 auto_show, supported, ok, enabled, pulls.up/down) as true/false. Byte counts
-that a byte array already gives are not repeated; read lengths are `n`.
+that a byte array already gives are not repeated; read lengths are `n`. A frame
+a real peer sends that robowire would not send (a level byte 2, mirte13's digital
+modify_reporting, ...) is decoded as the firmware reads it and ends with \"quirk\":
+its name; encode refuses such a line.
 {modes}
   sonar_distance (mirte13): trig, echo (LEN 5 form only), cm: a number or
     \"no_echo\", \"out_of_range\", \"stale\"; mirte12: trig, m, cm; upstream11:
@@ -60,7 +63,8 @@ that a byte array already gives are not repeated; read lengths are `n`.
   sensor_report: sensor_num, sensor_type, reading {{typed fields; floats read back
     as the same f32, \"inf\"/\"-inf\"/\"nan:0x...\" otherwise}}.
   module_report: module_num, module_type, message {{subtype, fields}}.
-  sensor_new, module_new: subtype check or add; module_new add has init {{...}}.
+  sensor_new, module_new: subtype check or add; module_new add has init {{...}};
+    mirte12's sensor_new is an add whose settings are the 0 to 6 bytes sent.
   module_data: module_num, then module_type and message {{subtype, fields}} when an
     earlier module_new add (or module_report) in the input named the module's
     type and the bytes parse as its data; otherwise data [bytes].
@@ -159,6 +163,12 @@ pub struct DecodeArgs {
     /// host.
     #[arg(long, display_order = 5)]
     pub lenient: bool,
+    /// With --from host: frame commands exactly as the Pico's firmware does
+    /// (a length byte 00 or over 30 is dropped, any other is trusted, never a
+    /// rescan), to see what the device ran; a frame that is no valid command
+    /// is an error and consumed whole.
+    #[arg(long, display_order = 6)]
+    pub as_firmware: bool,
     /// The options every decode shares.
     #[command(flatten)]
     pub common: DecodeCommon,
@@ -183,6 +193,11 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
             "--lenient accepts unknown report ids, which --from host does not decode".to_owned(),
         ));
     }
+    if args.as_firmware && args.from != From::Host {
+        return Err(Failure::Usage(
+            "--as-firmware frames commands as the Pico does; use it with --from host".to_owned(),
+        ));
+    }
     let mut source = args.common.source()?;
     let mut printer = Printer::new(out, args.common.errors);
     let chunk = args.common.chunk as usize;
@@ -191,6 +206,11 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     match args.from {
         From::Host => {
             let framing = Framing::<Device>::new().with_dialect(dialect);
+            let framing = if args.as_firmware {
+                framing.as_firmware()
+            } else {
+                framing
+            };
             decode_stream(framing, source, chunk, &mut printer)
         }
         From::Pico => {
