@@ -14,7 +14,9 @@
 #[path = "../tests/support/corruption.rs"]
 mod corruption;
 
-use corruption::{command_stream, decode, score, telemetry_stream, Corruption, Score, Stream};
+use corruption::{
+    command_stream, decode, score, spi_stream, telemetry_stream, Corruption, Score, Stream,
+};
 use robowire::omnitiles::{Both, Device, Framing, Host, Layout, Layouts, Message, Side};
 
 const CHUNKS: [(usize, &str); 4] = [(1, "1"), (7, "7"), (244, "244"), (0, "whole")];
@@ -55,6 +57,16 @@ fn main() {
             kind,
             &stream,
             Framing::<Both>::new(),
+        );
+    }
+    for (i, kind) in telemetry_kinds.into_iter().enumerate() {
+        let stream = spi_stream(0x5B10 + i as u64, frames, kind);
+        report(
+            "SPI buffers (spi45 + zero padding)",
+            "`Framing<Host>` with `auto,spi45`",
+            kind,
+            &stream,
+            Framing::<Host>::new().with_layouts(Layouts::DOCUMENTED.with(Layout::Spi45)),
         );
     }
     for (i, kind) in [
