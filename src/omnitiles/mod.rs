@@ -22,6 +22,8 @@
 //!   [`StreamDecoder`]); [`Framing`] says what they accept.
 //! * [`DatagramDecoder`] decodes runs of bytes whose boundaries are known (BLE
 //!   notifications and writes, SPI buffers).
+//! * [`FirmwareParser`] parses commands as the tile's firmware does, to tell
+//!   what a tile executed (see [below](#what-a-tile-executed)).
 //! * [`Layout`], [`Layouts`] and [`Motor`] have names (`FromStr`, `Display`):
 //!   `ble53`, `auto,spi45`, `m1`.
 //! * [`units`] converts bytes to duty, millimetres and back.
@@ -115,6 +117,17 @@
 //! hundred; the measured figures are in `docs/robustness.md`). Name a single
 //! layout when you know it: then neither can happen.
 //!
+//! # What a tile executed
+//!
+//! The stream decoders are robust: after a rejected candidate they rescan its
+//! bytes, so they find every frame a peer sent. A tile's own command parser
+//! does not, and executes fewer commands on a noisy link. [`FirmwareParser`]
+//! reproduces that parser byte for byte (no rescan, payload bytes taken
+//! blindly, an `a5` in the id slot consumed as an unknown id), so a capture
+//! of the host's bytes tells what the tile did; `robowire decode omnitiles
+//! --from host --as-firmware` uses it. It is opt-in: robust decoding stays
+//! the default.
+//!
 //! # Datagrams
 //!
 //! [`DatagramDecoder`] decodes byte runs whose boundaries are known (a BLE
@@ -129,6 +142,7 @@
 mod command;
 mod datagram;
 mod error;
+mod firmware;
 mod framing;
 mod layout;
 mod message;
@@ -144,6 +158,7 @@ pub use datagram::{
     BothDatagramDecoder, Datagram, DatagramDecoder, DeviceDatagramDecoder, HostDatagramDecoder,
 };
 pub use error::{Error, UnknownName};
+pub use firmware::{FirmwareEvent, FirmwareFeed, FirmwareParser};
 pub use framing::{Both, Device, Framing, Host, Side, TelemetrySide};
 pub use layout::{Layout, Layouts};
 pub use message::Message;
