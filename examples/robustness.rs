@@ -9,13 +9,21 @@
 //! back intact, uncorrupted frames lost, and false frames accepted (frames
 //! that were not sent intact at that place). The decoder's results are the
 //! same at every chunking (1, 7 and 244-byte chunks and the whole stream);
-//! a row per chunking is printed only where they differ.
+//! a row per chunking is printed only where they differ. A last table puts
+//! the device decoder beside `FirmwareParser` (what a tile executes) on
+//! corrupted command streams.
 
 #[path = "../tests/support/corruption.rs"]
 mod corruption;
 
-use corruption::{command_stream, decode, score, telemetry_stream, Corruption, Score, Stream};
-use robowire::omnitiles::{Both, Device, Framing, Host, Layout, Layouts, Message, Side};
+use corruption::{
+    command_stream, decode, score, spi_stream, telemetry_stream, Corruption, Score, Stream,
+};
+use std::collections::BTreeMap;
+
+use robowire::omnitiles::{
+    Both, Device, FirmwareParser, Framing, Host, Layout, Layouts, Message, Side,
+};
 
 const CHUNKS: [(usize, &str); 4] = [(1, "1"), (7, "7"), (244, "244"), (0, "whole")];
 
@@ -57,6 +65,16 @@ fn main() {
             Framing::<Both>::new(),
         );
     }
+    for (i, kind) in telemetry_kinds.into_iter().enumerate() {
+        let stream = spi_stream(0x5B10 + i as u64, frames, kind);
+        report(
+            "SPI buffers (spi45 + zero padding)",
+            "`Framing<Host>` with `auto,spi45`",
+            kind,
+            &stream,
+            Framing::<Host>::new().with_layouts(Layouts::DOCUMENTED.with(Layout::Spi45)),
+        );
+    }
     for (i, kind) in [
         Corruption::Clean,
         Corruption::GarbageEndingInStart,
@@ -74,6 +92,49 @@ fn main() {
             kind,
             &stream,
             Framing::<Device>::new(),
+        );
+    }
+    firmware_report(frames);
+}
+
+/// The robust device decoder against the tile's own parser on the same
+/// command stream: commands it finds that the tile never ran, and commands
+/// the tile ran that it does not give back.
+fn firmware_report(frames: usize) {
+    println!("\n{frames} commands per stream: what the device decoder finds against what a tile executes (`FirmwareParser`).\n");
+    println!("| corruption | decoder: commands | tile: executed | found, not executed | executed, not found |");
+    println!("|---|---:|---:|---:|---:|");
+    for (i, kind) in [
+        Corruption::Clean,
+        Corruption::GarbageEndingInStart,
+        Corruption::Garbage,
+        Corruption::BitFlips,
+        Corruption::Truncated,
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let stream = command_stream(0xF1A0 + i as u64, frames, kind);
+        let found: BTreeMap<(u64, usize), Message> =
+            decode(Framing::<Device>::new(), &stream.bytes, 0)
+                .into_iter()
+                .map(|f| ((f.offset, f.len), f.message))
+                .collect();
+        let mut tile = FirmwareParser::new();
+        let ran: BTreeMap<(u64, usize), Message> = tile
+            .feed(&stream.bytes)
+            .filter_map(Result::ok)
+            .map(|f| ((f.offset, f.len), Message::Command(f.message)))
+            .collect();
+        let missing = |a: &BTreeMap<(u64, usize), Message>, b: &BTreeMap<(u64, usize), Message>| {
+            a.iter().filter(|(at, m)| b.get(at) != Some(m)).count()
+        };
+        let (not_run, not_found) = (missing(&found, &ran), missing(&ran, &found));
+        println!(
+            "| {} | {} | {} | {not_run} | {not_found} |",
+            kind.name(),
+            found.len(),
+            ran.len()
         );
     }
 }

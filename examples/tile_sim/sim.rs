@@ -359,9 +359,15 @@ fn ble_notifications() -> Result<Vec<u8>, EncodeError> {
 
 /// STM32 → nRF SPI buffers: a 45-byte frame zero-padded to 128 bytes.
 fn spi_telemetry() -> Result<Vec<u8>, EncodeError> {
-    let mut tile = Tile::new(0x5b1_0003);
-    let mut out = Vec::new();
-    for _ in 0..64 {
+    spi_buffers(0x5b1_0003, 64)
+}
+
+/// `count` SPI buffers of a tile seeded with `seed`: each a 45-byte frame
+/// zero-padded to 128 bytes, as the STM32 sends them to the nRF.
+pub fn spi_buffers(seed: u64, count: usize) -> Result<Vec<u8>, EncodeError> {
+    let mut tile = Tile::new(seed);
+    let mut out = Vec::with_capacity(count * 128);
+    for _ in 0..count {
         let t = in_layout(&tile.step(), Layout::Spi45);
         let mut buffer = [0u8; 128];
         buffer[..45].copy_from_slice(&frame(&t)?);

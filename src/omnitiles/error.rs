@@ -27,9 +27,10 @@ pub enum Error {
         /// The id byte.
         id: u8,
     },
-    /// A telemetry candidate whose checksum validated at a shorter enabled
-    /// layout, but which no following frame header, end of input or longer
-    /// layout confirmed.
+    /// A telemetry candidate whose checksum validated at two or more enabled
+    /// layouts, none of them the longest enabled, and which no following
+    /// frame header (or, after a 45-byte frame, zero padding) or end of input
+    /// confirmed at any of them.
     #[error("telemetry length could not be confirmed")]
     Unconfirmed,
     /// The input ended inside a candidate of this many bytes.

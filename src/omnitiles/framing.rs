@@ -198,15 +198,17 @@ impl<S: Side> Framing<S> {
         })
     }
 
-    /// Does what follows a telemetry candidate confirm its length?
-    /// `Some(true)` yes, `Some(false)` no, `None` cannot tell yet.
-    fn confirms(&self, rest: &[u8], at_end: bool) -> Option<bool> {
+    /// Does what follows a telemetry candidate of `layout` confirm its
+    /// length? `Some(true)` yes, `Some(false)` no, `None` cannot tell yet.
+    /// Another accepted frame's header confirms any length; zero padding
+    /// confirms a 45-byte SPI frame (the rest of its 128-byte buffer).
+    fn confirms(&self, layout: Layout, rest: &[u8], at_end: bool) -> Option<bool> {
         match rest {
-            [] if at_end => Some(true),
-            [] => None,
-            [START] if at_end => Some(true),
-            [START] => None,
+            [] | [START] if at_end => Some(true),
+            [] | [START] => None,
             [START, next, ..] => Some(self.accepts_id(*next)),
+            [0, 0, ..] if layout == Layout::Spi45 => Some(true),
+            [0] if layout == Layout::Spi45 => at_end.then_some(true),
             _ => Some(false),
         }
     }
@@ -223,11 +225,18 @@ impl<S: Side> Framing<S> {
         self.check_layouts(longest, c, at_end)
     }
 
-    /// Several layouts: try them shortest first (see the length policy).
+    /// Several layouts: the length policy (see the module docs). The lengths
+    /// are tried shortest first; one whose sum validates is taken at once
+    /// when it is the longest enabled or what follows confirms it, and
+    /// otherwise counted. Once every enabled length has been tried (or the
+    /// input ends), a candidate at which exactly one length validated is
+    /// that frame; with two or more unconfirmed ones it is rejected.
     #[inline(never)]
     fn check_layouts(&self, longest: Layout, c: &[u8], at_end: bool) -> Check<Error> {
         let mut error = Error::Unconfirmed;
-        let mut unconfirmed = false;
+        // Lengths that validated without confirmation, and the first of them.
+        let mut unconfirmed = 0;
+        let mut only = 0;
         // Running sum over bytes 1.. so each length costs only its new bytes.
         let mut sum: u8 = 0;
         let mut summed = 1;
@@ -237,11 +246,14 @@ impl<S: Side> Framing<S> {
             }
             let len = layout.frame_len();
             if c.len() < len {
-                return if at_end {
-                    Check::Reject(Error::Truncated { len: c.len() })
-                } else {
-                    Check::Need(len)
-                };
+                if !at_end {
+                    return Check::Need(len);
+                }
+                // The input ended: longer lengths cannot validate.
+                if unconfirmed == 0 {
+                    error = Error::Truncated { len: c.len() };
+                }
+                break;
             }
             sum = sum.wrapping_add(sum8(&c[summed..len - 1]));
             summed = len - 1;
@@ -256,19 +268,24 @@ impl<S: Side> Framing<S> {
             if layout == longest {
                 return Check::Frame(len);
             }
-            match self.confirms(&c[len..], at_end) {
+            match self.confirms(layout, &c[len..], at_end) {
                 Some(true) => return Check::Frame(len),
-                Some(false) => unconfirmed = true,
+                Some(false) => {
+                    if unconfirmed == 0 {
+                        only = len;
+                    }
+                    unconfirmed += 1;
+                }
                 None => return Check::Need(len + 2),
             }
         }
-        // A shorter layout that validated says more than the longest one's
-        // checksum: a frame was probably here, followed by garbage.
-        Check::Reject(if unconfirmed {
-            Error::Unconfirmed
-        } else {
-            error
-        })
+        match unconfirmed {
+            // The only enabled length that validates here.
+            1 => Check::Frame(only),
+            0 => Check::Reject(error),
+            // Two or more, and nothing after them says which.
+            _ => Check::Reject(Error::Unconfirmed),
+        }
     }
 }
 

@@ -22,6 +22,8 @@
 //!   [`StreamDecoder`]); [`Framing`] says what they accept.
 //! * [`DatagramDecoder`] decodes runs of bytes whose boundaries are known (BLE
 //!   notifications and writes, SPI buffers).
+//! * [`FirmwareParser`] parses commands as the tile's firmware does, to tell
+//!   what a tile executed (see [below](#what-a-tile-executed)).
 //! * [`Layout`], [`Layouts`] and [`Motor`] have names (`FromStr`, `Display`):
 //!   `ble53`, `auto,spi45`, `m1`.
 //! * [`units`] converts bytes to duty, millimetres and back.
@@ -76,31 +78,55 @@
 //! deterministic:
 //!
 //! 1. It tries the enabled lengths **shortest first**.
-//! 2. Length `L` is accepted when the sum validates at `L` **and** the length
-//!    is confirmed: `L` is the longest enabled layout (emitted as soon as it is
-//!    complete); or the two bytes after it are another accepted frame's header
-//!    (`a5 60`, or `a5` and a command id when commands are accepted); or the
+//! 2. Length `L` is accepted at once when its sum validates **and** it is
+//!    confirmed: `L` is the longest enabled layout; or the two bytes after
+//!    it are another accepted frame's header (`a5 60`, or `a5` and a command
+//!    id when commands are accepted); or `L` is 45 (`spi45`) and the two
+//!    bytes after it are `00 00`, the zero padding of an SPI buffer; or the
 //!    input ends exactly at `L` (or at `L + 1` with a lone `a5`), which only
 //!    [`finish`](crate::StreamDecoder::finish) and
 //!    [`flush`](crate::StreamDecoder::flush) can say.
-//! 3. Otherwise it moves on to the next length; when none is accepted the
-//!    candidate is rejected (the longest layout's [`Error::Checksum`], or
-//!    [`Error::Unconfirmed`]) and the decoder resyncs by one byte.
+//! 3. Otherwise it moves on to the next length. Once every enabled length
+//!    has been tried (the longest enabled length is available) or the input
+//!    has ended, a candidate at which **exactly one** enabled length
+//!    validated is a frame of that length, confirmed or not.
+//! 4. When two or more lengths validated and none is confirmed, the
+//!    candidate is rejected ([`Error::Unconfirmed`]); when none validated,
+//!    with the longest layout's [`Error::Checksum`] (or [`Error::Truncated`]
+//!    at the end of input). The decoder then resyncs by one byte.
 //!
 //! Consequences: a frame of the longest enabled layout is emitted as soon as
-//! it is complete; a shorter one waits for the next frame's first two bytes;
-//! with a single layout enabled every frame is emitted as soon as it is
-//! complete and nothing needs confirming. On a clean stream of any mix of the
-//! enabled layouts, at any chunking, there are no false and no lost frames,
-//! with one exception the wire format cannot rule out: a longer frame whose
-//! own bytes validate as a shorter layout followed by an `a5 60` header is
-//! taken as the shorter frame. For instance a 53-byte frame whose bytes 1..=5
-//! sum to byte 6 and whose bytes 7 and 8 are `a5 60` (m1 = m2 = 0 and UWB d0 =
+//! it is complete; a shorter one as soon as the next frame's first two bytes
+//! confirm it, or else once the longest enabled length is available (a short
+//! frame followed by garbage is kept when its length is the only one that
+//! validates there, which is the common case); with a single layout enabled
+//! every frame is emitted as soon as it is complete and nothing needs
+//! confirming. Zero-padded SPI buffers decode exactly with any layout set
+//! that includes `spi45`. On a clean stream of any mix of the enabled
+//! layouts, at any chunking, there are no false and no lost frames, with
+//! one exception the wire format cannot rule out: a longer frame whose own
+//! bytes validate as a shorter layout followed by an `a5 60` header is taken
+//! as the shorter frame. For instance a 53-byte frame whose bytes 1..=5 sum
+//! to byte 6 and whose bytes 7 and 8 are `a5 60` (m1 = m2 = 0 and UWB d0 =
 //! `0xA560`, d1 = `0x0060`) is taken as a 7-byte frame, and likewise at 15
 //! and 17 bytes; for random contents that is about one frame in 2^24, pinned
-//! by a test. On a noisy stream, a short frame followed by garbage is dropped
-//! ([`Error::Unconfirmed`]) rather than guessed at. Name a single layout when
-//! you know it: then neither can happen.
+//! by a test. On a noisy stream a frame that is followed by garbage and
+//! validates at two lengths is dropped ([`Error::Unconfirmed`]), and a
+//! corrupted frame whose first bytes happen to validate at a shorter length
+//! is taken as that shorter, false frame (about one corrupted frame in a
+//! hundred; the measured figures are in `docs/robustness.md`). Name a single
+//! layout when you know it: then neither can happen.
+//!
+//! # What a tile executed
+//!
+//! The stream decoders are robust: after a rejected candidate they rescan its
+//! bytes, so they find every frame a peer sent. A tile's own command parser
+//! does not, and executes fewer commands on a noisy link. [`FirmwareParser`]
+//! reproduces that parser byte for byte (no rescan, payload bytes taken
+//! blindly, an `a5` in the id slot consumed as an unknown id), so a capture
+//! of the host's bytes tells what the tile did; `robowire decode omnitiles
+//! --from host --as-firmware` uses it. It is opt-in: robust decoding stays
+//! the default.
 //!
 //! # Datagrams
 //!
@@ -116,6 +142,7 @@
 mod command;
 mod datagram;
 mod error;
+mod firmware;
 mod framing;
 mod layout;
 mod message;
@@ -131,6 +158,7 @@ pub use datagram::{
     BothDatagramDecoder, Datagram, DatagramDecoder, DeviceDatagramDecoder, HostDatagramDecoder,
 };
 pub use error::{Error, UnknownName};
+pub use firmware::{FirmwareEvent, FirmwareFeed, FirmwareParser};
 pub use framing::{Both, Device, Framing, Host, Side, TelemetrySide};
 pub use layout::{Layout, Layouts};
 pub use message::Message;

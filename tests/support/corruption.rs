@@ -134,6 +134,18 @@ pub fn generate(
     seed: u64,
     count: usize,
     corruption: Corruption,
+    next: impl FnMut(&mut Rng) -> Message,
+) -> Stream {
+    generate_padded(seed, count, corruption, 0, next)
+}
+
+/// [`generate`], each frame followed by zeros up to `pad` bytes from its
+/// start (an SPI buffer: `pad` 128).
+pub fn generate_padded(
+    seed: u64,
+    count: usize,
+    corruption: Corruption,
+    pad: usize,
     mut next: impl FnMut(&mut Rng) -> Message,
 ) -> Stream {
     let mut rng = Rng(seed);
@@ -182,9 +194,19 @@ pub fn generate(
             packet,
             intact,
         });
+        let start = bytes.len();
         bytes.extend_from_slice(&frame);
+        bytes.resize(bytes.len().max(start + pad), 0);
     }
     Stream { bytes, sent }
+}
+
+/// SPI buffers: 45-byte telemetry frames, each zero-padded to 128 bytes
+/// (garbage goes before a buffer, a cut frame is still padded).
+pub fn spi_stream(seed: u64, count: usize, corruption: Corruption) -> Stream {
+    generate_padded(seed, count, corruption, 128, |rng| {
+        Message::Telemetry(telemetry(rng, Layout::Spi45))
+    })
 }
 
 /// Telemetry frames with layouts drawn from `layouts`.

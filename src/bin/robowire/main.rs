@@ -23,7 +23,8 @@ const LONG_ABOUT: &str = "\
 Decode and encode robot serial protocol captures as JSON lines.
 
   robowire decode omnitiles [--from tile|host|any] [--layout L[,L...]] [--chunk N]
-                            [--hex] [--datagrams] [--errors] [INPUT]
+                            [--hex] [--datagrams] [--as-firmware] [--errors]
+                            [INPUT]
   robowire encode omnitiles [--hex] [INPUT]
   robowire decode pixy2 [--from host|device|any] [--checksum-only] [--chunk N]
                         [--hex] [--errors] [INPUT]

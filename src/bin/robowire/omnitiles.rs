@@ -7,7 +7,8 @@ use crate::input::{hex_line, Input, Lines};
 use crate::Failure;
 use clap::{Args, ValueEnum};
 use robowire::omnitiles::{
-    self, Both, DatagramDecoder, Device, Framing, Host, Layout, Layouts, Message,
+    self, Both, Command, DatagramDecoder, Device, FirmwareParser, Framing, Host, Layout, Layouts,
+    Message,
 };
 use robowire::{FrameBuf, StreamDecoder};
 use serde::Serialize;
@@ -38,6 +39,9 @@ With --errors, rejected candidates are objects with offset and error (no type):
   {{\"offset\":77,\"error\":\"unconfirmed\"}}
   {{\"offset\":90,\"error\":\"truncated\",\"len\":5}}
   {{\"offset\":95,\"error\":\"superseded\",\"len\":7}}
+With --as-firmware (--from host only), frames are the commands the tile's own
+parser executes and rejections the candidates it consumes without executing
+them (every byte of those counts as skipped).
 At the end, one summary line goes to stderr (frames, bytes, bytes skipped,
 checksum failures, other rejections).
 
@@ -47,7 +51,8 @@ Examples:
   robowire decode omnitiles tests/data/ble_telemetry.bin
   robowire decode omnitiles --from tile --layout spi45 tests/data/spi_telemetry.bin
   robowire decode omnitiles --datagrams tests/data/ble_notifications.hex
-  echo 'a5 30 c8 f8' | robowire decode omnitiles --hex"
+  echo 'a5 30 c8 f8' | robowire decode omnitiles --hex
+  robowire decode omnitiles --from host --as-firmware tests/data/host_commands.bin"
     )
 }
 
@@ -90,6 +95,14 @@ pub struct DecodeArgs {
     /// (implies --hex; not with --chunk).
     #[arg(long, conflicts_with = "chunk", display_order = 5)]
     pub datagrams: bool,
+    /// Parse commands as the tile's own firmware does, to see what a tile
+    /// executed (only with --from host; not with --datagrams).
+    ///
+    /// No rescan after a rejected candidate, payload bytes taken blindly, an
+    /// 0xA5 in the id slot consumed as an unknown id: prints the commands a
+    /// tile executed rather than every command the host sent.
+    #[arg(long, conflicts_with = "datagrams", display_order = 5)]
+    pub as_firmware: bool,
     /// The options every decode shares.
     #[command(flatten)]
     pub common: DecodeCommon,
@@ -110,9 +123,16 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
         [] => Layouts::DOCUMENTED,
         sets => sets.iter().flat_map(|set| set.iter()).collect(),
     };
+    if args.as_firmware && args.from != Side::Host {
+        return Err(Failure::Usage(
+            "--as-firmware reproduces the tile's command parser: use it with --from host"
+                .to_owned(),
+        ));
+    }
     match args.from {
         Side::Tile => run(args, Framing::<Host>::new().with_layouts(layouts), out),
         Side::Any => run(args, Framing::<Both>::new().with_layouts(layouts), out),
+        Side::Host if args.layout.is_empty() && args.as_firmware => run_firmware(args, out),
         Side::Host if args.layout.is_empty() => run(args, Framing::<Device>::new(), out),
         Side::Host => Err(Failure::Usage(
             "--layout selects telemetry layouts, which --from host does not accept".to_owned(),
@@ -135,6 +155,41 @@ where
     let decoder = StreamDecoder::<_, { omnitiles::BOTH_BUFFER }>::new(framing);
     let chunk = args.common.chunk as usize;
     driver::decode_stream(decoder, source.as_mut(), chunk, &mut printer)
+}
+
+/// `--as-firmware`: the tile's own command parser over the whole input,
+/// `--chunk` bytes at a time (its events never depend on the chunking).
+fn run_firmware(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
+    let mut source = args.common.source()?;
+    let mut printer = Printer::new(out, args.common.errors);
+    let mut parser = FirmwareParser::new();
+    let mut buf = vec![0u8; args.common.chunk as usize];
+    loop {
+        let n = match source.fill(&mut buf) {
+            Ok(0) => break,
+            Ok(n) => n,
+            Err(failure) => {
+                return Ok(Decoded {
+                    stats: parser.stats(),
+                    failure: Some(failure),
+                })
+            }
+        };
+        for event in parser.feed(&buf[..n]) {
+            printer.event(event)?;
+        }
+        // Before a read that may wait, show what has been decoded so far.
+        if source.may_wait() {
+            printer.flush()?;
+        }
+    }
+    if let Some(rejected) = parser.finish() {
+        printer.event::<Command, _>(Err(rejected))?;
+    }
+    Ok(Decoded {
+        stats: parser.stats(),
+        failure: None,
+    })
 }
 
 /// One datagram per line of hex. A line that is not valid hex is reported and
