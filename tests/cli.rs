@@ -12,10 +12,7 @@ use std::io::{Read, Write};
 use std::process::{Command, Stdio};
 
 fn summary(frames: u64, bytes: u64, skipped: u64, checksum: u64, other: u64) -> String {
-    format!(
-        "robowire: {frames} frames, {bytes} bytes, {skipped} bytes skipped, \
-         {checksum} checksum failures, {other} other rejections, 0 malformed\n"
-    )
+    cli_common::summary_line([frames, bytes, skipped, checksum, other, 0])
 }
 
 // ---------------------------------------------------------------- golden vectors

@@ -61,10 +61,7 @@ fn frame(checksum: bool, packet_type: u8, payload: &[u8]) -> Vec<u8> {
 }
 
 fn summary(frames: u64, bytes: u64, skipped: u64, checksum: u64, other: u64, bad: u64) -> String {
-    format!(
-        "robowire: {frames} frames, {bytes} bytes, {skipped} bytes skipped, \
-         {checksum} checksum failures, {other} other rejections, {bad} malformed\n"
-    )
+    cli_common::summary_line([frames, bytes, skipped, checksum, other, bad])
 }
 
 // ---------------------------------------------------------------- golden vectors

@@ -12,10 +12,7 @@ use cli_common::{data, data_arg, hex, run, Run};
 use robowire::telemetrix::host_decoder;
 
 fn summary(frames: u64, bytes: u64, skipped: u64, other: u64) -> String {
-    format!(
-        "robowire: {frames} frames, {bytes} bytes, {skipped} bytes skipped, \
-         0 checksum failures, {other} other rejections, 0 malformed\n"
-    )
+    cli_common::summary_line([frames, bytes, skipped, 0, other, 0])
 }
 
 // ---------------------------------------------------------------- golden examples
