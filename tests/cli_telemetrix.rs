@@ -774,7 +774,6 @@ fn lenient_decodes_unknown_reports() {
 #[test]
 fn malformed_json_lines() {
     let cases: &[(&str, &str)] = &[
-        (r#"{"type":"ping""#, "not valid JSON: EOF while parsing an object at line 1 column 14"),
         (r#"[1,2]"#, "expected a JSON object, found [1,2]"),
         (r#"{"counter":3}"#, "missing field `type`"),
         (r#"{"type":"pling"}"#, "unknown type `pling`"),

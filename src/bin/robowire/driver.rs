@@ -271,11 +271,13 @@ pub fn summary(stats: &Stats) -> String {
 }
 
 /// Encode every JSON line of the input with `protocol`, writing raw bytes or,
-/// with `--hex`, one line of hex per frame. A malformed line is reported on
-/// stderr with its number, nothing is written for it, and the run goes on;
-/// the result is then [`Failure::Reported`]. Blank lines and diagnostic
-/// events (objects with `error` and no `type`, as `decode --errors` prints
-/// them) are skipped.
+/// with `--hex`, one line of hex per frame. A malformed line (a line over
+/// [`MAX_LINE`](crate::input::MAX_LINE) bytes, not UTF-8, not valid JSON, or
+/// no valid message) is reported on stderr with its number, nothing is
+/// written for it, and the run goes on; the result is then
+/// [`Failure::Reported`]. A UTF-8 byte-order mark is reported and ignored;
+/// UTF-16 input stops the run. Blank lines and diagnostic events (objects
+/// with `error` and no `type`, as `decode --errors` prints them) are skipped.
 pub fn encode_lines<P: Schema>(
     protocol: &P,
     args: &EncodeCommon,
@@ -286,25 +288,40 @@ pub fn encode_lines<P: Schema>(
     let mut frame = Vec::new();
     let mut text = Vec::new();
     let mut bad = 0u64;
+    let name = lines.name().to_owned();
     loop {
         // Flush before a read that may wait, so frames go out as lines arrive.
         if !lines.has_buffered() {
             out.flush()?;
         }
-        let Some((number, line)) = lines.next_line()? else {
+        let Some((number, mut line)) = lines.next_line()? else {
             break;
         };
+        if number == 1 {
+            if let Some(rest) = line.strip_prefix(b"\xef\xbb\xbf") {
+                eprintln!("robowire: {name}: line 1: ignoring a UTF-8 byte-order mark");
+                line = rest;
+            } else if line.starts_with(b"\xff\xfe") || line.starts_with(b"\xfe\xff") {
+                return Err(Failure::Invalid(format!(
+                    "{name}: the input is UTF-16 (it starts with a byte-order mark); \
+                     JSON lines must be UTF-8"
+                )));
+            }
+        }
         if line.iter().all(u8::is_ascii_whitespace) {
             continue;
         }
         frame.clear();
-        let read = read_line::<P::Line>(line)
-            .and_then(|line| line.map_or(Ok(()), |line| protocol.encode(&line, &mut frame)));
+        let read = read_line::<P::Line>(line).and_then(|line| {
+            line.map_or(Ok(()), |line| protocol.encode(&line, &mut frame))
+                .map_err(|message| (None, message))
+        });
         match read {
             Ok(()) if frame.is_empty() => continue,
             Ok(()) => {}
-            Err(message) => {
-                eprintln!("robowire: {}: line {number}: {message}", lines.name());
+            Err((column, message)) => {
+                let column = column.map_or(String::new(), |c| format!(", column {c}"));
+                eprintln!("robowire: {name}: line {number}{column}: {message}");
                 bad += 1;
                 continue;
             }
@@ -322,6 +339,7 @@ pub fn encode_lines<P: Schema>(
             out.write(&frame)?;
         }
     }
+    let bad = bad + lines.too_long();
     if bad > 0 {
         let s = if bad == 1 { "" } else { "s" };
         return Err(Failure::Reported(format!("{bad} malformed line{s}")));
@@ -330,16 +348,30 @@ pub fn encode_lines<P: Schema>(
 }
 
 /// One JSON line read into `L`; `None` for a diagnostic event (an object with
-/// `error` and no `type`, as `decode --errors` prints them).
-fn read_line<L: DeserializeOwned>(line: &[u8]) -> Result<Option<L>, String> {
-    let value: Value = serde_json::from_slice(line).map_err(|e| format!("not valid JSON: {e}"))?;
+/// `error` and no `type`, as `decode --errors` prints them). The error has
+/// the column where the text went wrong, if it did.
+fn read_line<L: DeserializeOwned>(line: &[u8]) -> Result<Option<L>, (Option<usize>, String)> {
+    let text = std::str::from_utf8(line).map_err(|e| {
+        let at = e.valid_up_to();
+        (
+            Some(at + 1),
+            format!("not UTF-8 text (byte {:#04x})", line[at]),
+        )
+    })?;
+    let value: Value = serde_json::from_str(text).map_err(|e| {
+        // The column goes with the line number, not into serde's message.
+        let message = e.to_string();
+        let position = format!(" at line {} column {}", e.line(), e.column());
+        let message = message.strip_suffix(&position).unwrap_or(&message);
+        (Some(e.column()), format!("not valid JSON: {message}"))
+    })?;
     let map = value
         .as_object()
-        .ok_or_else(|| format!("expected a JSON object, found {value}"))?;
+        .ok_or_else(|| (None, format!("expected a JSON object, found {value}")))?;
     if !map.contains_key("type") && map.contains_key("error") {
         return Ok(None);
     }
     serde_json::from_value(value)
         .map(Some)
-        .map_err(|e| e.to_string())
+        .map_err(|e| (None, e.to_string()))
 }

@@ -172,6 +172,11 @@ fn main() -> ExitCode {
     };
     match done {
         Done::Decoded(decoded) => {
+            // An input that could not be read at all has nothing to sum up.
+            if let (Some(failure @ Failure::Io { .. }), 0) = (&decoded.failure, decoded.stats.bytes)
+            {
+                return failure.report();
+            }
             eprintln!("{}", driver::summary(&decoded.stats));
             match decoded.failure {
                 Some(failure) => failure.report(),

@@ -1,0 +1,170 @@
+//! What the `robowire` binary says on stderr about its input: encode's bad
+//! lines (too long, not UTF-8, a byte-order mark, invalid JSON), inputs that
+//! cannot be read, and where hex text goes wrong.
+
+#![cfg(feature = "cli")]
+
+mod cli_common;
+
+use cli_common::{data_arg, run, summary_line};
+
+const MAX_LINE: usize = 1 << 20;
+
+// ---------------------------------------------------------------- encode's bad lines
+
+#[test]
+fn encode_skips_a_line_over_the_limit_and_goes_on() {
+    let long = format!(r#"{{"type":"ping","pad":"{}"}}"#, "x".repeat(MAX_LINE));
+    // The long line in the middle, and again as the last line without a newline.
+    let input = format!("{{\"type\":\"ping\"}}\n{long}\n{{\"type\":\"base_brake\"}}\n{long}");
+    let r = run(&["encode", "omnitiles", "--hex"], input.as_bytes());
+    assert_eq!(r.code, 2);
+    assert_eq!(r.text(), "a5 50 50\na5 71 71\n");
+    assert_eq!(
+        r.stderr,
+        "robowire: stdin: line 2: longer than 1048576 bytes\n\
+         robowire: stdin: line 4: longer than 1048576 bytes\n\
+         robowire: 2 malformed lines\n"
+    );
+    // A line of exactly the limit is read.
+    let padded = format!(r#"{{"type":"ping"}}{}"#, " ".repeat(MAX_LINE - 15));
+    let r = run(&["encode", "omnitiles", "--hex"], padded.as_bytes());
+    assert_eq!((r.code, r.text(), r.stderr.as_str()), (0, "a5 50 50\n", ""));
+}
+
+#[test]
+fn datagrams_skip_a_line_over_the_limit_and_go_on() {
+    let input = format!("a5 50 50\n{}\na5 71 71\n", "0".repeat(MAX_LINE + 2));
+    let r = run(&["decode", "omnitiles", "--datagrams"], input.as_bytes());
+    assert_eq!(r.code, 2);
+    assert_eq!(
+        r.lines(),
+        [
+            r#"{"offset":0,"len":3,"type":"ping"}"#,
+            r#"{"offset":3,"len":3,"type":"base_brake"}"#,
+        ]
+    );
+    assert_eq!(
+        r.stderr,
+        "robowire: stdin: line 2: longer than 1048576 bytes\n".to_owned()
+            + &summary_line([2, 6, 0, 0, 0, 0])
+            + "robowire: 1 invalid datagram line\n"
+    );
+}
+
+#[test]
+fn encode_says_where_a_line_is_not_utf8_or_not_json() {
+    let input = b"{\"type\":\"ping\"}\n{\"type\":\"pi\xffng\"}\n{\"type\":\"ping\"\n{\"type\":\"base_brake\"}\n";
+    let r = run(&["encode", "omnitiles", "--hex"], input);
+    assert_eq!(r.code, 2);
+    assert_eq!(r.text(), "a5 50 50\na5 71 71\n");
+    // One position, the tool's: no serde "at line 1 column 14" inside it.
+    assert_eq!(
+        r.stderr,
+        "robowire: stdin: line 2, column 12: not UTF-8 text (byte 0xff)\n\
+         robowire: stdin: line 3, column 14: not valid JSON: EOF while parsing an object\n\
+         robowire: 2 malformed lines\n"
+    );
+    for protocol in ["pixy2", "telemetrix"] {
+        let r = run(&["encode", protocol], b"\n{\"type\":\"get_fps\" 1}\n");
+        assert_eq!((r.code, r.stdout.len()), (2, 0));
+        assert_eq!(
+            r.stderr,
+            "robowire: stdin: line 2, column 19: not valid JSON: \
+             expected `,` or `}`\n\
+             robowire: 1 malformed line\n"
+        );
+    }
+}
+
+#[test]
+fn encode_ignores_a_utf8_byte_order_mark_and_stops_at_utf16() {
+    let r = run(
+        &["encode", "omnitiles", "--hex"],
+        b"\xef\xbb\xbf{\"type\":\"ping\"}\n{\"type\":\"base_brake\"}\n",
+    );
+    assert_eq!(r.code, 0);
+    assert_eq!(r.text(), "a5 50 50\na5 71 71\n");
+    assert_eq!(
+        r.stderr,
+        "robowire: stdin: line 1: ignoring a UTF-8 byte-order mark\n"
+    );
+    let utf16: Vec<u8> = "\u{feff}{\"type\":\"ping\"}\n"
+        .encode_utf16()
+        .flat_map(u16::to_le_bytes)
+        .collect();
+    let r = run(&["encode", "omnitiles", "--hex"], &utf16);
+    assert_eq!((r.code, r.stdout.len()), (2, 0));
+    assert_eq!(
+        r.stderr,
+        "robowire: stdin: the input is UTF-16 (it starts with a byte-order mark); \
+         JSON lines must be UTF-8\n"
+    );
+}
+
+// ---------------------------------------------------------------- inputs that cannot be read
+
+#[test]
+fn a_directory_fails_before_any_summary() {
+    let dir = data_arg("");
+    let dir = dir.trim_end_matches('/');
+    for args in [
+        &["decode", "omnitiles", dir][..],
+        &["decode", "omnitiles", "--hex", dir],
+        &["decode", "omnitiles", "--datagrams", dir],
+        &["decode", "pixy2", dir],
+        &["decode", "telemetrix", dir],
+        &["encode", "telemetrix", dir],
+    ] {
+        let r = run(args, b"");
+        assert_eq!((r.code, r.stdout.len()), (1, 0), "{args:?}");
+        // The system's own words ("Is a directory"), on one line.
+        assert!(
+            r.stderr.starts_with(&format!("robowire: {dir}: ")),
+            "{args:?}"
+        );
+        assert_eq!(r.stderr.lines().count(), 1, "{args:?}: {}", r.stderr);
+    }
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn an_unreadable_file_fails_before_any_summary() {
+    // Opens, and its first read fails (address 0 is not mapped).
+    for args in [
+        &["decode", "omnitiles", "/proc/self/mem"][..],
+        &["decode", "omnitiles", "--datagrams", "/proc/self/mem"],
+    ] {
+        let r = run(args, b"");
+        assert_eq!((r.code, r.stdout.len()), (1, 0), "{args:?}");
+        assert!(
+            r.stderr.starts_with("robowire: /proc/self/mem: ") && r.stderr.lines().count() == 1,
+            "{args:?}: {}",
+            r.stderr
+        );
+    }
+}
+
+#[test]
+fn hex_and_datagrams_report_positions_alike() {
+    let text = b"a5 50 50\n  0xa5 0x71 7 0x";
+    let hex = run(&["decode", "omnitiles", "--hex"], text);
+    let datagrams = run(&["decode", "omnitiles", "--datagrams"], text);
+    assert_eq!((hex.code, datagrams.code), (2, 2));
+    // The last digit has no pair: the `7`, not the `0` of the `0x` after it.
+    assert!(hex
+        .stderr
+        .ends_with("robowire: stdin: line 2, column 13: odd number of hex digits\n"));
+    assert!(datagrams
+        .stderr
+        .starts_with("robowire: stdin: line 2, column 13: odd number of hex digits\n"));
+    let text = b"a5 50 50\n a5 7q 71\n";
+    let hex = run(&["decode", "omnitiles", "--hex"], text);
+    let datagrams = run(&["decode", "omnitiles", "--datagrams"], text);
+    assert!(hex
+        .stderr
+        .ends_with("robowire: stdin: line 2, column 6: invalid hex digit 'q'\n"));
+    assert!(datagrams
+        .stderr
+        .starts_with("robowire: stdin: line 2, column 6: invalid hex digit 'q'\n"));
+}
