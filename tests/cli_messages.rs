@@ -1,12 +1,13 @@
 //! What the `robowire` binary says on stderr about its input: encode's bad
 //! lines (too long, not UTF-8, a byte-order mark, invalid JSON), inputs that
-//! cannot be read, and where hex text goes wrong.
+//! cannot be read, where hex text goes wrong, and the warnings about a
+//! misleading decode, which never change stdout or the exit status.
 
 #![cfg(feature = "cli")]
 
 mod cli_common;
 
-use cli_common::{data_arg, run, summary_line};
+use cli_common::{data, data_arg, run, summary_line};
 
 const MAX_LINE: usize = 1 << 20;
 
@@ -167,4 +168,118 @@ fn hex_and_datagrams_report_positions_alike() {
     assert!(datagrams
         .stderr
         .starts_with("robowire: stdin: line 2, column 6: invalid hex digit 'q'\n"));
+}
+
+// ---------------------------------------------------------------- warnings
+
+/// The stderr of a decode that warns: the summary, then the warning.
+fn warned(counts: [u64; 6], warning: &str) -> String {
+    summary_line(counts) + "robowire: warning: " + warning + "\n"
+}
+
+#[test]
+fn hex_text_without_hex_warns() {
+    let r = run(
+        &["decode", "omnitiles", &data_arg("ble_notifications.hex")],
+        b"",
+    );
+    assert_eq!((r.code, r.stdout.len()), (0, 0));
+    assert_eq!(
+        r.stderr,
+        warned(
+            [0, 12720, 12720, 0, 0, 0],
+            "the input looks like hex text: read it with --hex, \
+             or --datagrams when each line is one datagram"
+        )
+    );
+    let r = run(&["decode", "pixy2"], b"0xae, 0xc1, 0x0e, 0x00\n");
+    assert_eq!((r.code, r.stdout.len()), (0, 0));
+    assert_eq!(
+        r.stderr,
+        warned(
+            [0, 23, 23, 0, 0, 0],
+            "the input looks like hex text: read it with --hex"
+        )
+    );
+    // Read as hex, the same text decodes and nothing is said.
+    let r = run(&["decode", "pixy2", "--hex"], b"0xae, 0xc1, 0x0e, 0x00\n");
+    assert_eq!((r.code, r.lines().len()), (0, 1));
+    assert_eq!(r.stderr, summary_line([1, 4, 0, 0, 0, 0]));
+}
+
+#[test]
+fn the_wrong_protocol_warns() {
+    let capture = data_arg("ble_telemetry.bin");
+    let r = run(&["decode", "telemetrix", &capture], b"");
+    // Output and status as without the warning: 69 false frames, status 0.
+    assert_eq!((r.code, r.lines().len()), (0, 69));
+    assert_eq!(
+        r.stderr,
+        warned(
+            [69, 15920, 15332, 0, 15059, 0],
+            "most of the input did not decode (96 % skipped, 15059 candidates rejected, \
+             69 frames): check the protocol, --from and --dialect; frames found this way may \
+             be false"
+        )
+    );
+    let r = run(&["decode", "pixy2", &capture], b"");
+    assert_eq!((r.code, r.stdout.len()), (0, 0));
+    assert_eq!(
+        r.stderr,
+        warned(
+            [0, 15920, 15920, 0, 0, 0],
+            "most of the input did not decode (100 % skipped, 0 candidates rejected, 0 frames): \
+             check the protocol, --from; frames found this way may be false"
+        )
+    );
+    // The right protocol with the wrong direction.
+    let commands = data_arg("host_commands.bin");
+    let r = run(&["decode", "omnitiles", "--from", "tile", &commands], b"");
+    assert_eq!((r.code, r.stdout.len()), (0, 0));
+    assert!(r.stderr.ends_with(
+        "0 frames): check the protocol, --from and --layout; frames found this way may be false\n"
+    ));
+}
+
+#[test]
+fn noise_alone_and_zero_padding_do_not_warn() {
+    // A little noise is not worth a warning, nor is zero padding (SPI
+    // command buffers are mostly padding).
+    let r = run(&["decode", "omnitiles"], &[0x55; 63]);
+    assert_eq!(r.stderr, summary_line([0, 63, 63, 0, 0, 0]));
+    let spi = data_arg("spi_commands.hex");
+    let r = run(
+        &["decode", "omnitiles", "--from", "host", "--datagrams", &spi],
+        b"",
+    );
+    assert_eq!(r.stderr, summary_line([44, 5120, 4953, 0, 0, 0]));
+    let r = run(
+        &["decode", "omnitiles", "--from", "host", "--hex", &spi],
+        b"",
+    );
+    assert_eq!(r.stderr, summary_line([44, 5120, 4953, 0, 0, 0]));
+}
+
+#[test]
+fn spi_buffers_without_spi45_warn() {
+    let capture = data_arg("spi_telemetry.bin");
+    let warning = "the input looks like zero-padded SPI buffers: decode it with --layout spi45, \
+                   or with --datagrams and one buffer per line";
+    for from in ["any", "tile"] {
+        let r = run(&["decode", "omnitiles", "--from", from, &capture], b"");
+        // The one false 53-byte frame, as without the warning.
+        assert_eq!((r.code, r.lines().len()), (0, 1));
+        assert!(r.lines()[0].contains(r#""layout":"ble53""#));
+        assert_eq!(r.stderr, warned([1, 8192, 8139, 61, 17, 0], warning));
+    }
+    // The same bytes as hex text.
+    let bytes = std::fs::read(data("spi_telemetry.bin")).unwrap();
+    let text: String = bytes.iter().map(|b| format!("{b:02x} ")).collect();
+    let r = run(&["decode", "omnitiles", "--hex"], text.as_bytes());
+    assert_eq!((r.code, r.lines().len()), (0, 1));
+    assert_eq!(r.stderr, warned([1, 8192, 8139, 61, 17, 0], warning));
+    // With spi45 among the layouts, nothing is said.
+    let r = run(&["decode", "omnitiles", "--layout", "spi45", &capture], b"");
+    assert_eq!((r.code, r.lines().len()), (0, 64));
+    assert_eq!(r.stderr, summary_line([64, 8192, 5312, 0, 0, 0]));
 }

@@ -6,6 +6,7 @@
 use crate::input::{ByteSource, HexBytes, Input, Lines, RawBytes};
 use crate::Failure;
 use clap::Args;
+use robowire::omnitiles::padded_spi_frames;
 use robowire::stream::{FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats, StreamDecoder};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
@@ -69,7 +70,9 @@ impl DecodeCommon {
 /// The end of every decode help text: the summary and the exit status.
 pub const DECODE_FOOTER: &str = "\
 Exit status: 0 on success, 2 on usage errors and invalid input (bad hex),
-1 on I/O errors. A closed stdout pipe ends the run quietly.";
+1 on I/O errors. A closed stdout pipe ends the run quietly. A warning after
+the summary (hex text without --hex, SPI buffers without spi45, most of the
+input skipped) changes neither the output nor the exit status.";
 
 /// Options every `encode` subcommand shares.
 #[derive(Debug, Args)]
@@ -82,9 +85,14 @@ pub struct EncodeCommon {
     pub input: Option<PathBuf>,
 }
 
-/// Buffered stdout that turns a closed pipe into [`Failure::BrokenPipe`].
+/// Buffered stdout that turns a closed pipe into [`Failure::BrokenPipe`],
+/// and what the decoded bytes looked like, for [`warning`].
 pub struct Output {
     out: BufWriter<StdoutLock<'static>>,
+    /// The first 64 KiB of the decoded bytes.
+    start: Vec<u8>,
+    /// How many of the decoded bytes were `00`.
+    zeros: u64,
 }
 
 impl Output {
@@ -92,6 +100,8 @@ impl Output {
     pub fn stdout() -> Self {
         Output {
             out: BufWriter::with_capacity(64 * 1024, io::stdout().lock()),
+            start: Vec::new(),
+            zeros: 0,
         }
     }
 
@@ -141,6 +151,15 @@ impl<'o> Printer<'o> {
         written.map_err(|e| Failure::Reported(format!("cannot print an event: {e}")))?;
         buf.push(b'\n');
         self.out.write(buf)
+    }
+
+    /// Note bytes about to be decoded, for [`warning`].
+    pub fn observe(&mut self, bytes: &[u8]) {
+        let room = 64 * 1024 - self.out.start.len();
+        self.out
+            .start
+            .extend_from_slice(&bytes[..room.min(bytes.len())]);
+        self.out.zeros += bytes.iter().filter(|&&b| b == 0).count() as u64;
     }
 
     /// Write out everything printed so far (before waiting for input, so a
@@ -203,6 +222,7 @@ where
                 })
             }
         };
+        printer.observe(&buf[..n]);
         for event in decoder.feed(&buf[..n]) {
             printer.event(annotate(event))?;
         }
@@ -268,6 +288,44 @@ pub fn listed<'n>(
 /// The one-line summary printed on stderr at the end of a decode.
 pub fn summary(stats: &Stats) -> String {
     format!("robowire: {stats}")
+}
+
+/// What a decode's [`warning`] may suggest: how to read hex text (`None`
+/// when it was read as hex), the options that choose what is accepted, and
+/// whether OmniTiles SPI buffers would be misread (no `spi45` layout).
+pub type Hints = (Option<&'static str>, &'static str, bool);
+
+/// Why the output of a decode may mislead, if it may: the input looks like
+/// hex text, or like zero-padded SPI buffers, or almost nothing in it decoded
+/// (over 90 % of its non-zero bytes skipped, or over 8 rejections per frame).
+/// A warning never changes the output or the exit status.
+pub fn warning(stats: &Stats, out: &Output, (hex, options, spi): Hints) -> Option<String> {
+    let start = &out.start;
+    let digits = start.iter().filter(|c| c.is_ascii_hexdigit()).count();
+    let text = |c: &u8| c.is_ascii_hexdigit() || b" \t\r\n,xX".contains(c);
+    if let Some(hex) = hex.filter(|_| digits >= 2 && start.iter().all(text)) {
+        return Some(format!("the input looks like hex text: read it with {hex}"));
+    }
+    if spi && padded_spi_frames(start) >= 2 {
+        return Some(
+            "the input looks like zero-padded SPI buffers: decode it with --layout spi45, \
+             or with --datagrams and one buffer per line"
+                .to_owned(),
+        );
+    }
+    let rejected = stats.checksum_errors + stats.rejected + stats.superseded;
+    let content = stats.bytes.saturating_sub(out.zeros);
+    let skipped = stats.skipped.saturating_sub(out.zeros);
+    let mostly_skipped = content >= 64 && skipped * 10 > content * 9;
+    let many_rejections = rejected >= 64 && rejected > 8 * stats.frames;
+    let (percent, frames) = (stats.skipped * 100 / stats.bytes.max(1), stats.frames);
+    (mostly_skipped || many_rejections).then(|| {
+        format!(
+            "most of the input did not decode ({percent} % skipped, {rejected} candidates \
+             rejected, {frames} frames): check the protocol, {options}; frames found this way \
+             may be false"
+        )
+    })
 }
 
 /// Encode every JSON line of the input with `protocol`, writing raw bytes or,

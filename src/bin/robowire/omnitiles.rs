@@ -174,6 +174,7 @@ where
         if datagram.is_empty() {
             continue;
         }
+        printer.observe(&datagram);
         for event in decoder.decode(&datagram) {
             printer.event(event)?;
         }
