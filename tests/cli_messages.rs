@@ -283,3 +283,102 @@ fn spi_buffers_without_spi45_warn() {
     assert_eq!((r.code, r.lines().len()), (0, 64));
     assert_eq!(r.stderr, summary_line([64, 8192, 5312, 0, 0, 0]));
 }
+
+/// A pseudo-terminal for the child's stdin, from the C library.
+#[cfg(target_os = "linux")]
+mod pty {
+    use std::ffi::CStr;
+    use std::fs::{File, OpenOptions};
+    use std::os::fd::AsRawFd;
+    use std::os::raw::{c_char, c_int};
+
+    extern "C" {
+        fn unlockpt(fd: c_int) -> c_int;
+        fn ptsname_r(fd: c_int, buf: *mut c_char, len: usize) -> c_int;
+    }
+
+    /// The controlling side and the terminal.
+    pub fn open() -> (File, File) {
+        let ptmx = OpenOptions::new()
+            .read(true)
+            .write(true)
+            .open("/dev/ptmx")
+            .unwrap();
+        let mut name = [0 as c_char; 128];
+        // SAFETY: `ptmx` is an open pseudo-terminal master and `name` is a
+        // writable buffer of the length given.
+        let path = unsafe {
+            assert_eq!(unlockpt(ptmx.as_raw_fd()), 0);
+            assert_eq!(
+                ptsname_r(ptmx.as_raw_fd(), name.as_mut_ptr(), name.len()),
+                0
+            );
+            CStr::from_ptr(name.as_ptr()).to_str().unwrap().to_owned()
+        };
+        let terminal = OpenOptions::new()
+            .read(true)
+            .write(true)
+            .open(path)
+            .unwrap();
+        (ptmx, terminal)
+    }
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_silent_terminal_on_stdin_is_told_to_type() {
+    use std::io::{BufRead, BufReader, Read, Write};
+    use std::process::{Command, Stdio};
+
+    let spawn = |terminal| {
+        Command::new(env!("CARGO_BIN_EXE_robowire"))
+            .args(["decode", "omnitiles", "--hex"])
+            .stdin(Stdio::from(terminal))
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    // Nothing typed: the tool says what it waits for, and then decodes what
+    // comes as usual.
+    let (mut ptmx, terminal) = pty::open();
+    let mut child = spawn(terminal);
+    let mut stderr = BufReader::new(child.stderr.take().unwrap());
+    let (sender, notice) = std::sync::mpsc::channel();
+    let reader = std::thread::spawn(move || {
+        let mut line = String::new();
+        stderr.read_line(&mut line).unwrap();
+        sender.send(line).unwrap();
+        let mut rest = String::new();
+        stderr.read_to_string(&mut rest).unwrap();
+        rest
+    });
+    // Not a measurement: a bound, so that a tool that never says it fails
+    // the test instead of hanging it.
+    let notice = notice.recv_timeout(std::time::Duration::from_secs(60));
+    if notice.is_err() {
+        child.kill().unwrap();
+    }
+    assert_eq!(
+        notice.unwrap(),
+        "robowire: waiting for input on stdin (a terminal): type or paste it and end it \
+         with Ctrl-D, or name an input file\n"
+    );
+    // A line, then end of input (Ctrl-D at the start of a line).
+    ptmx.write_all(b"a5 50 50\n\x04").unwrap();
+    let rest = reader.join().unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(out.stdout, b"{\"offset\":0,\"len\":3,\"type\":\"ping\"}\n");
+    assert_eq!(rest, summary_line([1, 3, 0, 0, 0, 0]));
+    // Input already there: no notice.
+    let (mut ptmx, terminal) = pty::open();
+    ptmx.write_all(b"a5 50 50\n\x04").unwrap();
+    let out = spawn(terminal).wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(out.stdout, b"{\"offset\":0,\"len\":3,\"type\":\"ping\"}\n");
+    assert_eq!(
+        String::from_utf8(out.stderr).unwrap(),
+        summary_line([1, 3, 0, 0, 0, 0])
+    );
+}

@@ -4,8 +4,11 @@
 
 use crate::Failure;
 use std::fs::File;
-use std::io::{self, BufRead, BufReader, Read};
+use std::io::{self, BufRead, BufReader, IsTerminal, Read};
 use std::path::Path;
+use std::sync::mpsc;
+use std::thread;
+use std::time::Duration;
 
 /// The longest input line accepted (JSON lines, datagram lines), in bytes.
 /// A longer line is an error rather than unbounded memory.
@@ -24,6 +27,8 @@ pub struct Input {
     whole_reads: bool,
     /// A read error that followed bytes already returned.
     pending: Option<io::Error>,
+    /// Stdin is a terminal and nothing has been read from it yet.
+    terminal: bool,
 }
 
 impl Input {
@@ -44,6 +49,7 @@ impl Input {
                         reader: Box::new(file),
                         whole_reads,
                         pending: None,
+                        terminal: false,
                     }),
                     Err(error) => Err(Failure::Io {
                         context: name,
@@ -60,7 +66,34 @@ impl Input {
             reader: Box::new(io::stdin().lock()),
             whole_reads: false,
             pending: None,
+            terminal: io::stdin().is_terminal(),
         }
+    }
+
+    /// One read. The first read from a terminal that stays silent for a
+    /// second says on stderr what the tool is waiting for; the thread that
+    /// says so ends with that read.
+    fn read_some(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        if !std::mem::take(&mut self.terminal) {
+            return self.reader.read(buf);
+        }
+        let (arrived, silence) = mpsc::channel::<()>();
+        thread::scope(|scope| {
+            // Ends when the read returns and `arrived` is dropped, if not before.
+            scope.spawn(move || {
+                if silence.recv_timeout(Duration::from_secs(1))
+                    == Err(mpsc::RecvTimeoutError::Timeout)
+                {
+                    eprintln!(
+                        "robowire: waiting for input on stdin (a terminal): type or paste it \
+                         and end it with Ctrl-D, or name an input file"
+                    );
+                }
+            });
+            let read = self.reader.read(buf);
+            drop(arrived);
+            read
+        })
     }
 
     /// The input's name (a path or `stdin`).
@@ -90,7 +123,7 @@ impl Input {
         }
         let mut n = 0;
         while n < buf.len() {
-            match self.reader.read(&mut buf[n..]) {
+            match self.read_some(&mut buf[n..]) {
                 Ok(0) => break,
                 Ok(k) => {
                     n += k;
@@ -388,7 +421,7 @@ pub struct Lines {
 
 impl Read for Input {
     fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
-        self.reader.read(buf)
+        self.read_some(buf)
     }
 }
 
