@@ -337,29 +337,36 @@ impl Stats {
 }
 
 /// One line, as the `robowire` tool's summary prints it:
-/// `2 frames, 20 bytes, 11 bytes skipped, 1 checksum failures, 2 other
+/// `2 frames, 20 bytes, 11 bytes skipped, 1 checksum failure, 2 other
 /// rejections, 0 malformed` (candidates set aside by the resync verification
-/// count as rejections).
+/// count as rejections; a count of 1 takes the singular).
 ///
 /// ```
 /// let mut stats = robowire::Stats::new();
 /// (stats.frames, stats.bytes, stats.frame_bytes, stats.skipped) = (1, 4, 3, 1);
 /// assert_eq!(
 ///     stats.to_string(),
-///     "1 frames, 4 bytes, 1 bytes skipped, 0 checksum failures, 0 other rejections, 0 malformed"
+///     "1 frame, 4 bytes, 1 byte skipped, 0 checksum failures, 0 other rejections, 0 malformed"
 /// );
 /// ```
 impl fmt::Display for Stats {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = |n: u64| if n == 1 { "" } else { "s" };
+        let rejected = self.rejected + self.superseded;
         write!(
             f,
-            "{} frames, {} bytes, {} bytes skipped, {} checksum failures, \
-             {} other rejections, {} malformed",
+            "{} frame{}, {} byte{}, {} byte{} skipped, {} checksum failure{}, \
+             {} other rejection{}, {} malformed",
             self.frames,
+            s(self.frames),
             self.bytes,
+            s(self.bytes),
             self.skipped,
+            s(self.skipped),
             self.checksum_errors,
-            self.rejected + self.superseded,
+            s(self.checksum_errors),
+            rejected,
+            s(rejected),
             self.malformed
         )
     }

@@ -11,10 +11,7 @@ use std::io::{Read, Write};
 use std::process::{Command, Stdio};
 
 fn summary(frames: u64, bytes: u64, skipped: u64, checksum: u64, other: u64) -> String {
-    format!(
-        "robowire: {frames} frames, {bytes} bytes, {skipped} bytes skipped, \
-         {checksum} checksum failures, {other} other rejections, 0 malformed\n"
-    )
+    cli_common::summary_line([frames, bytes, skipped, checksum, other, 0])
 }
 
 // ---------------------------------------------------------------- golden vectors
@@ -421,8 +418,8 @@ fn datagram_line_that_is_not_hex() {
     );
     assert_eq!(
         r.stderr,
-        "robowire: stdin: line 2: column 5: invalid hex digit 'g'\n\
-         robowire: stdin: line 4: odd number of hex digits\n"
+        "robowire: stdin: line 2, column 5: invalid hex digit 'g'\n\
+         robowire: stdin: line 4, column 4: odd number of hex digits\n"
             .to_owned()
             + &summary(2, 6, 0, 0, 0)
             + "robowire: 2 invalid datagram lines\n"
@@ -622,7 +619,6 @@ fn encode_skips_diagnostics_and_blank_lines() {
 #[test]
 fn malformed_json_lines() {
     let cases: &[(&str, &str)] = &[
-        (r#"{"type":"ping""#, "not valid JSON: EOF while parsing an object at line 1 column 14"),
         (r#"[1,2]"#, "expected a JSON object, found [1,2]"),
         (r#"{"speed":3}"#, "missing field `type`"),
         (r#"{"type":"m3_extend"}"#, "unknown type `m3_extend`"),
@@ -753,7 +749,7 @@ fn bad_hex_stops_the_decode() {
     assert_eq!(odd.code, 2);
     assert!(odd
         .stderr
-        .ends_with("robowire: stdin: at the end of the input: odd number of hex digits\n"));
+        .ends_with("robowire: stdin: line 1, column 10: odd number of hex digits\n"));
 }
 
 #[test]

@@ -61,10 +61,7 @@ fn frame(checksum: bool, packet_type: u8, payload: &[u8]) -> Vec<u8> {
 }
 
 fn summary(frames: u64, bytes: u64, skipped: u64, checksum: u64, other: u64, bad: u64) -> String {
-    format!(
-        "robowire: {frames} frames, {bytes} bytes, {skipped} bytes skipped, \
-         {checksum} checksum failures, {other} other rejections, {bad} malformed\n"
-    )
+    cli_common::summary_line([frames, bytes, skipped, checksum, other, bad])
 }
 
 // ---------------------------------------------------------------- golden vectors
@@ -664,7 +661,6 @@ fn malformed_json_lines() {
         line(0)
     );
     let cases: Vec<(String, &str)> = vec![
-        (r#"{"type":"get_fps""#.into(), "not valid JSON: EOF while parsing an object at line 1 column 17"),
         (r#"{"sigmap":1}"#.into(), "missing field `type`"),
         (r#"{"type":"get_verison"}"#.into(), "unknown type `get_verison`"),
         (r#"{"type":"get_version","extra":1}"#.into(), "unknown field `extra` for type get_version"),

@@ -112,6 +112,42 @@ impl<S: Side> DatagramDecoder<S> {
     }
 }
 
+/// How many zero-padded SPI telemetry buffers `bytes` holds: places where a
+/// valid [`Layout::Spi45`] frame is followed by zero padding (eight `00`, or
+/// at least one up to the end of `bytes`), as the STM32 hands its 45-byte
+/// frame to the nRF in a 128-byte buffer. A stream where they recur was
+/// captured on that SPI bus: decode it with `Spi45` among the layouts, or one
+/// buffer at a time with a [`DatagramDecoder`]. With the documented layouts
+/// its padding is skipped, its frames are lost, and a buffer whose checksum
+/// byte is `0x00` or `0x80` reads as a false 53-byte frame.
+///
+/// ```
+/// let mut buffer = [0u8; 128];
+/// buffer[..7].copy_from_slice(&[0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x41]);
+/// buffer[44] = robowire::omnitiles::checksum(&buffer[1..44]);
+/// assert_eq!(robowire::omnitiles::padded_spi_frames(&buffer.repeat(3)), 3);
+/// assert_eq!(robowire::omnitiles::padded_spi_frames(&buffer[..45]), 0);
+/// ```
+pub fn padded_spi_frames(bytes: &[u8]) -> usize {
+    const LEN: usize = Layout::Spi45.frame_len();
+    const PADDING: usize = Layout::Ble53.frame_len() - LEN;
+    let (mut count, mut i) = (0, 0);
+    while i + LEN < bytes.len() {
+        let frame = &bytes[i..i + LEN];
+        let padding = &bytes[i + LEN..bytes.len().min(i + LEN + PADDING)];
+        if frame[..2] == [START, id::TELEMETRY]
+            && checksum(&frame[1..LEN - 1]) == frame[LEN - 1]
+            && padding.iter().all(|&b| b == 0)
+        {
+            count += 1;
+            i += LEN;
+        } else {
+            i += 1;
+        }
+    }
+    count
+}
+
 /// A datagram decoder on the host's side: telemetry.
 pub type HostDatagramDecoder = DatagramDecoder<Host>;
 /// A datagram decoder on the device's side: commands.

@@ -155,7 +155,8 @@ mod wire;
 
 pub use command::{Command, Motor};
 pub use datagram::{
-    BothDatagramDecoder, Datagram, DatagramDecoder, DeviceDatagramDecoder, HostDatagramDecoder,
+    padded_spi_frames, BothDatagramDecoder, Datagram, DatagramDecoder, DeviceDatagramDecoder,
+    HostDatagramDecoder,
 };
 pub use error::{Error, UnknownName};
 pub use firmware::{FirmwareEvent, FirmwareFeed, FirmwareParser};

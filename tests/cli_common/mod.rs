@@ -69,3 +69,18 @@ pub fn hex(s: &str) -> Vec<u8> {
         .map(|b| u8::from_str_radix(b, 16).unwrap())
         .collect()
 }
+
+/// The summary line a decode prints on stderr, counts of 1 in the singular.
+pub fn summary_line(counts: [u64; 6]) -> String {
+    let [frames, bytes, skipped, checksum, other, malformed] = counts;
+    let s = |n: u64| if n == 1 { "" } else { "s" };
+    format!(
+        "robowire: {frames} frame{}, {bytes} byte{}, {skipped} byte{} skipped, \
+         {checksum} checksum failure{}, {other} other rejection{}, {malformed} malformed\n",
+        s(frames),
+        s(bytes),
+        s(skipped),
+        s(checksum),
+        s(other),
+    )
+}

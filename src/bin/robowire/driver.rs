@@ -6,6 +6,7 @@
 use crate::input::{ByteSource, HexBytes, Input, Lines, RawBytes};
 use crate::Failure;
 use clap::Args;
+use robowire::omnitiles::padded_spi_frames;
 use robowire::stream::{FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats, StreamDecoder};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
@@ -69,7 +70,9 @@ impl DecodeCommon {
 /// The end of every decode help text: the summary and the exit status.
 pub const DECODE_FOOTER: &str = "\
 Exit status: 0 on success, 2 on usage errors and invalid input (bad hex),
-1 on I/O errors. A closed stdout pipe ends the run quietly.";
+1 on I/O errors. A closed stdout pipe ends the run quietly. A warning after
+the summary (hex text without --hex, SPI buffers without spi45, most of the
+input skipped) changes neither the output nor the exit status.";
 
 /// Options every `encode` subcommand shares.
 #[derive(Debug, Args)]
@@ -82,9 +85,14 @@ pub struct EncodeCommon {
     pub input: Option<PathBuf>,
 }
 
-/// Buffered stdout that turns a closed pipe into [`Failure::BrokenPipe`].
+/// Buffered stdout that turns a closed pipe into [`Failure::BrokenPipe`],
+/// and what the decoded bytes looked like, for [`warning`].
 pub struct Output {
     out: BufWriter<StdoutLock<'static>>,
+    /// The first 64 KiB of the decoded bytes.
+    start: Vec<u8>,
+    /// How many of the decoded bytes were `00`.
+    zeros: u64,
 }
 
 impl Output {
@@ -92,6 +100,8 @@ impl Output {
     pub fn stdout() -> Self {
         Output {
             out: BufWriter::with_capacity(64 * 1024, io::stdout().lock()),
+            start: Vec::new(),
+            zeros: 0,
         }
     }
 
@@ -141,6 +151,15 @@ impl<'o> Printer<'o> {
         written.map_err(|e| Failure::Reported(format!("cannot print an event: {e}")))?;
         buf.push(b'\n');
         self.out.write(buf)
+    }
+
+    /// Note bytes about to be decoded, for [`warning`].
+    pub fn observe(&mut self, bytes: &[u8]) {
+        let room = 64 * 1024 - self.out.start.len();
+        self.out
+            .start
+            .extend_from_slice(&bytes[..room.min(bytes.len())]);
+        self.out.zeros += bytes.iter().filter(|&&b| b == 0).count() as u64;
     }
 
     /// Write out everything printed so far (before waiting for input, so a
@@ -203,6 +222,7 @@ where
                 })
             }
         };
+        printer.observe(&buf[..n]);
         for event in decoder.feed(&buf[..n]) {
             printer.event(annotate(event))?;
         }
@@ -270,12 +290,52 @@ pub fn summary(stats: &Stats) -> String {
     format!("robowire: {stats}")
 }
 
+/// What a decode's [`warning`] may suggest: how to read hex text (`None`
+/// when it was read as hex), the options that choose what is accepted, and
+/// whether OmniTiles SPI buffers would be misread (no `spi45` layout).
+pub type Hints = (Option<&'static str>, &'static str, bool);
+
+/// Why the output of a decode may mislead, if it may: the input looks like
+/// hex text, or like zero-padded SPI buffers, or almost nothing in it decoded
+/// (over 90 % of its non-zero bytes skipped, or over 8 rejections per frame).
+/// A warning never changes the output or the exit status.
+pub fn warning(stats: &Stats, out: &Output, (hex, options, spi): Hints) -> Option<String> {
+    let start = &out.start;
+    let digits = start.iter().filter(|c| c.is_ascii_hexdigit()).count();
+    let text = |c: &u8| c.is_ascii_hexdigit() || b" \t\r\n,xX".contains(c);
+    if let Some(hex) = hex.filter(|_| digits >= 2 && start.iter().all(text)) {
+        return Some(format!("the input looks like hex text: read it with {hex}"));
+    }
+    if spi && padded_spi_frames(start) >= 2 {
+        return Some(
+            "the input looks like zero-padded SPI buffers: decode it with --layout spi45, \
+             or with --datagrams and one buffer per line"
+                .to_owned(),
+        );
+    }
+    let rejected = stats.checksum_errors + stats.rejected + stats.superseded;
+    let content = stats.bytes.saturating_sub(out.zeros);
+    let skipped = stats.skipped.saturating_sub(out.zeros);
+    let mostly_skipped = content >= 64 && skipped * 10 > content * 9;
+    let many_rejections = rejected >= 64 && rejected > 8 * stats.frames;
+    let (percent, frames) = (stats.skipped * 100 / stats.bytes.max(1), stats.frames);
+    (mostly_skipped || many_rejections).then(|| {
+        format!(
+            "most of the input did not decode ({percent} % skipped, {rejected} candidates \
+             rejected, {frames} frames): check the protocol, {options}; frames found this way \
+             may be false"
+        )
+    })
+}
+
 /// Encode every JSON line of the input with `protocol`, writing raw bytes or,
-/// with `--hex`, one line of hex per frame. A malformed line is reported on
-/// stderr with its number, nothing is written for it, and the run goes on;
-/// the result is then [`Failure::Reported`]. Blank lines and diagnostic
-/// events (objects with `error` and no `type`, as `decode --errors` prints
-/// them) are skipped.
+/// with `--hex`, one line of hex per frame. A malformed line (a line over
+/// [`MAX_LINE`](crate::input::MAX_LINE) bytes, not UTF-8, not valid JSON, or
+/// no valid message) is reported on stderr with its number, nothing is
+/// written for it, and the run goes on; the result is then
+/// [`Failure::Reported`]. A UTF-8 byte-order mark is reported and ignored;
+/// UTF-16 input stops the run. Blank lines and diagnostic events (objects
+/// with `error` and no `type`, as `decode --errors` prints them) are skipped.
 pub fn encode_lines<P: Schema>(
     protocol: &P,
     args: &EncodeCommon,
@@ -286,25 +346,40 @@ pub fn encode_lines<P: Schema>(
     let mut frame = Vec::new();
     let mut text = Vec::new();
     let mut bad = 0u64;
+    let name = lines.name().to_owned();
     loop {
         // Flush before a read that may wait, so frames go out as lines arrive.
         if !lines.has_buffered() {
             out.flush()?;
         }
-        let Some((number, line)) = lines.next_line()? else {
+        let Some((number, mut line)) = lines.next_line()? else {
             break;
         };
+        if number == 1 {
+            if let Some(rest) = line.strip_prefix(b"\xef\xbb\xbf") {
+                eprintln!("robowire: {name}: line 1: ignoring a UTF-8 byte-order mark");
+                line = rest;
+            } else if line.starts_with(b"\xff\xfe") || line.starts_with(b"\xfe\xff") {
+                return Err(Failure::Invalid(format!(
+                    "{name}: the input is UTF-16 (it starts with a byte-order mark); \
+                     JSON lines must be UTF-8"
+                )));
+            }
+        }
         if line.iter().all(u8::is_ascii_whitespace) {
             continue;
         }
         frame.clear();
-        let read = read_line::<P::Line>(line)
-            .and_then(|line| line.map_or(Ok(()), |line| protocol.encode(&line, &mut frame)));
+        let read = read_line::<P::Line>(line).and_then(|line| {
+            line.map_or(Ok(()), |line| protocol.encode(&line, &mut frame))
+                .map_err(|message| (None, message))
+        });
         match read {
             Ok(()) if frame.is_empty() => continue,
             Ok(()) => {}
-            Err(message) => {
-                eprintln!("robowire: {}: line {number}: {message}", lines.name());
+            Err((column, message)) => {
+                let column = column.map_or(String::new(), |c| format!(", column {c}"));
+                eprintln!("robowire: {name}: line {number}{column}: {message}");
                 bad += 1;
                 continue;
             }
@@ -322,6 +397,7 @@ pub fn encode_lines<P: Schema>(
             out.write(&frame)?;
         }
     }
+    let bad = bad + lines.too_long();
     if bad > 0 {
         let s = if bad == 1 { "" } else { "s" };
         return Err(Failure::Reported(format!("{bad} malformed line{s}")));
@@ -330,16 +406,30 @@ pub fn encode_lines<P: Schema>(
 }
 
 /// One JSON line read into `L`; `None` for a diagnostic event (an object with
-/// `error` and no `type`, as `decode --errors` prints them).
-fn read_line<L: DeserializeOwned>(line: &[u8]) -> Result<Option<L>, String> {
-    let value: Value = serde_json::from_slice(line).map_err(|e| format!("not valid JSON: {e}"))?;
+/// `error` and no `type`, as `decode --errors` prints them). The error has
+/// the column where the text went wrong, if it did.
+fn read_line<L: DeserializeOwned>(line: &[u8]) -> Result<Option<L>, (Option<usize>, String)> {
+    let text = std::str::from_utf8(line).map_err(|e| {
+        let at = e.valid_up_to();
+        (
+            Some(at + 1),
+            format!("not UTF-8 text (byte {:#04x})", line[at]),
+        )
+    })?;
+    let value: Value = serde_json::from_str(text).map_err(|e| {
+        // The column goes with the line number, not into serde's message.
+        let message = e.to_string();
+        let position = format!(" at line {} column {}", e.line(), e.column());
+        let message = message.strip_suffix(&position).unwrap_or(&message);
+        (Some(e.column()), format!("not valid JSON: {message}"))
+    })?;
     let map = value
         .as_object()
-        .ok_or_else(|| format!("expected a JSON object, found {value}"))?;
+        .ok_or_else(|| (None, format!("expected a JSON object, found {value}")))?;
     if !map.contains_key("type") && map.contains_key("error") {
         return Ok(None);
     }
     serde_json::from_value(value)
         .map(Some)
-        .map_err(|e| e.to_string())
+        .map_err(|e| (None, e.to_string()))
 }

@@ -4,8 +4,11 @@
 
 use crate::Failure;
 use std::fs::File;
-use std::io::{self, BufRead, BufReader, Read};
+use std::io::{self, BufRead, BufReader, IsTerminal, Read};
 use std::path::Path;
+use std::sync::mpsc;
+use std::thread;
+use std::time::Duration;
 
 /// The longest input line accepted (JSON lines, datagram lines), in bytes.
 /// A longer line is an error rather than unbounded memory.
@@ -24,6 +27,8 @@ pub struct Input {
     whole_reads: bool,
     /// A read error that followed bytes already returned.
     pending: Option<io::Error>,
+    /// Stdin is a terminal and nothing has been read from it yet.
+    terminal: bool,
 }
 
 impl Input {
@@ -44,6 +49,7 @@ impl Input {
                         reader: Box::new(file),
                         whole_reads,
                         pending: None,
+                        terminal: false,
                     }),
                     Err(error) => Err(Failure::Io {
                         context: name,
@@ -60,7 +66,34 @@ impl Input {
             reader: Box::new(io::stdin().lock()),
             whole_reads: false,
             pending: None,
+            terminal: io::stdin().is_terminal(),
         }
+    }
+
+    /// One read. The first read from a terminal that stays silent for a
+    /// second says on stderr what the tool is waiting for; the thread that
+    /// says so ends with that read.
+    fn read_some(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        if !std::mem::take(&mut self.terminal) {
+            return self.reader.read(buf);
+        }
+        let (arrived, silence) = mpsc::channel::<()>();
+        thread::scope(|scope| {
+            // Ends when the read returns and `arrived` is dropped, if not before.
+            scope.spawn(move || {
+                if silence.recv_timeout(Duration::from_secs(1))
+                    == Err(mpsc::RecvTimeoutError::Timeout)
+                {
+                    eprintln!(
+                        "robowire: waiting for input on stdin (a terminal): type or paste it \
+                         and end it with Ctrl-D, or name an input file"
+                    );
+                }
+            });
+            let read = self.reader.read(buf);
+            drop(arrived);
+            read
+        })
     }
 
     /// The input's name (a path or `stdin`).
@@ -90,7 +123,7 @@ impl Input {
         }
         let mut n = 0;
         while n < buf.len() {
-            match self.reader.read(&mut buf[n..]) {
+            match self.read_some(&mut buf[n..]) {
                 Ok(0) => break,
                 Ok(k) => {
                     n += k;
@@ -227,15 +260,51 @@ impl HexParser {
     }
 }
 
+/// A [`HexParser`] that knows where it is, so that `--hex` and
+/// `--datagrams` report errors alike: `line L, column C: ...`, an odd number
+/// of digits at the digit left without a pair (the last one).
+#[derive(Debug, Default, Clone, Copy)]
+struct HexCursor {
+    parser: HexParser,
+    line: u64,
+    column: u64,
+    /// Where the last digit was, and the digit before it (to undo a `0`
+    /// that turns out to begin a `0x` prefix).
+    last_digit: (u64, u64),
+    before: (u64, u64),
+}
+
+impl HexCursor {
+    fn push(&mut self, c: u8) -> Result<Option<u8>, String> {
+        self.column += 1;
+        let at = (self.line, self.column);
+        if c.is_ascii_hexdigit() {
+            (self.before, self.last_digit) = (self.last_digit, at);
+        } else if c == b'x' || c == b'X' {
+            self.last_digit = self.before;
+        } else if c == b'\n' {
+            (self.line, self.column) = (self.line + 1, 0);
+        }
+        self.parser.push(c).map_err(|e| Self::located(at, e))
+    }
+
+    fn finish(&mut self) -> Result<Option<u8>, String> {
+        let at = self.last_digit;
+        self.parser.finish().map_err(|e| Self::located(at, e))
+    }
+
+    fn located((line, column): (u64, u64), error: HexError) -> String {
+        format!("line {line}, column {column}: {error}")
+    }
+}
+
 /// Hex text read as one stream of bytes (`--hex`).
 pub struct HexBytes {
     input: Input,
     text: Vec<u8>,
     pos: usize,
     end: usize,
-    parser: HexParser,
-    line: u64,
-    column: u64,
+    cursor: HexCursor,
     done: bool,
     error: Option<Failure>,
 }
@@ -248,20 +317,17 @@ impl HexBytes {
             text: vec![0; READ_SIZE],
             pos: 0,
             end: 0,
-            parser: HexParser::default(),
-            line: 1,
-            column: 0,
+            cursor: HexCursor {
+                line: 1,
+                ..HexCursor::default()
+            },
             done: false,
             error: None,
         }
     }
 
-    fn invalid(&self, error: HexError) -> Failure {
-        let at = match error {
-            HexError::Invalid(_) => format!("line {}, column {}", self.line, self.column),
-            HexError::OddDigits => "at the end of the input".to_owned(),
-        };
-        Failure::Invalid(format!("{}: {at}: {error}", self.input.name()))
+    fn invalid(&self, error: String) -> Failure {
+        Failure::Invalid(format!("{}: {error}", self.input.name()))
     }
 }
 
@@ -289,7 +355,7 @@ impl ByteSource for HexBytes {
                 };
                 if self.end == 0 {
                     self.done = true;
-                    match self.parser.finish() {
+                    match self.cursor.finish() {
                         Ok(Some(byte)) => {
                             buf[n] = byte;
                             n += 1;
@@ -302,8 +368,7 @@ impl ByteSource for HexBytes {
             }
             let c = self.text[self.pos];
             self.pos += 1;
-            self.column += 1;
-            match self.parser.push(c) {
+            match self.cursor.push(c) {
                 Ok(Some(byte)) => {
                     buf[n] = byte;
                     n += 1;
@@ -313,10 +378,6 @@ impl ByteSource for HexBytes {
                     self.error = Some(self.invalid(e));
                     self.done = true;
                 }
-            }
-            if c == b'\n' {
-                self.line += 1;
-                self.column = 0;
             }
         }
         match self.error.take() {
@@ -333,36 +394,34 @@ impl ByteSource for HexBytes {
     }
 }
 
-/// Parse one line of hex text into `out` (cleared first).
-pub fn hex_line(line: &[u8], out: &mut Vec<u8>) -> Result<(), String> {
+/// Parse line `number` of hex text into `out` (cleared first); the error
+/// says where (`line L, column C: ...`).
+pub fn hex_line(number: u64, line: &[u8], out: &mut Vec<u8>) -> Result<(), String> {
     out.clear();
-    let mut parser = HexParser::default();
-    for (i, &c) in line.iter().enumerate() {
-        match parser.push(c) {
-            Ok(Some(byte)) => out.push(byte),
-            Ok(None) => {}
-            Err(e) => return Err(format!("column {}: {e}", i + 1)),
-        }
+    let mut cursor = HexCursor {
+        line: number,
+        ..HexCursor::default()
+    };
+    for &c in line {
+        out.extend(cursor.push(c)?);
     }
-    match parser.finish() {
-        Ok(Some(byte)) => out.push(byte),
-        Ok(None) => {}
-        Err(e) => return Err(e.to_string()),
-    }
+    out.extend(cursor.finish()?);
     Ok(())
 }
 
-/// An input read line by line, each line at most [`MAX_LINE`] bytes.
+/// An input read line by line, each line at most [`MAX_LINE`] bytes: a
+/// longer line is reported on stderr and skipped, like any bad line.
 pub struct Lines {
     reader: BufReader<Input>,
     line: Vec<u8>,
     number: u64,
     name: String,
+    too_long: u64,
 }
 
 impl Read for Input {
     fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
-        self.reader.read(buf)
+        self.read_some(buf)
     }
 }
 
@@ -374,7 +433,13 @@ impl Lines {
             reader: BufReader::with_capacity(READ_SIZE, input),
             line: Vec::new(),
             number: 0,
+            too_long: 0,
         }
+    }
+
+    /// How many lines were skipped for being longer than [`MAX_LINE`].
+    pub fn too_long(&self) -> u64 {
+        self.too_long
     }
 
     /// The input's name.
@@ -389,38 +454,44 @@ impl Lines {
     }
 
     /// The next line (1-based number, text without its line ending), or
-    /// `None` at the end.
+    /// `None` at the end. Lines over [`MAX_LINE`] bytes are reported and
+    /// skipped without holding more than that in memory.
     pub fn next_line(&mut self) -> Result<Option<(u64, &[u8])>, Failure> {
-        self.line.clear();
-        let limit = MAX_LINE as u64 + 1;
-        let read = loop {
-            match (&mut self.reader)
-                .take(limit)
-                .read_until(b'\n', &mut self.line)
-            {
-                Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
-                other => break other,
-            }
-        };
-        let n = read.map_err(|error| Failure::Io {
+        let failure = |error| Failure::Io {
             context: self.name.clone(),
             error,
-        })?;
-        if n == 0 {
-            return Ok(None);
-        }
-        self.number += 1;
-        if self.line.last() == Some(&b'\n') {
-            self.line.pop();
-            if self.line.last() == Some(&b'\r') {
-                self.line.pop();
+        };
+        // In the rest of a line that is too long.
+        let mut skipping = false;
+        loop {
+            self.line.clear();
+            let limit = MAX_LINE as u64 + 1;
+            let n = (&mut self.reader)
+                .take(limit)
+                .read_until(b'\n', &mut self.line)
+                .map_err(failure)?;
+            if n == 0 {
+                return Ok(None);
             }
-        } else if self.line.len() > MAX_LINE {
-            return Err(Failure::Invalid(format!(
-                "{}: line {}: longer than {MAX_LINE} bytes",
-                self.name, self.number
-            )));
+            let ended = self.line.last() == Some(&b'\n');
+            if skipping {
+                skipping = !ended;
+                continue;
+            }
+            self.number += 1;
+            if ended {
+                self.line.pop();
+                if self.line.last() == Some(&b'\r') {
+                    self.line.pop();
+                }
+            } else if self.line.len() > MAX_LINE {
+                let (name, number) = (&self.name, self.number);
+                eprintln!("robowire: {name}: line {number}: longer than {MAX_LINE} bytes");
+                self.too_long += 1;
+                skipping = true;
+                continue;
+            }
+            return Ok(Some((self.number, &self.line)));
         }
-        Ok(Some((self.number, &self.line)))
     }
 }

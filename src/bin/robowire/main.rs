@@ -14,6 +14,7 @@ mod pixy2;
 mod telemetrix;
 
 use clap::{Parser, Subcommand};
+use robowire::omnitiles::Layout;
 use std::io;
 use std::process::ExitCode;
 
@@ -160,6 +161,24 @@ fn run(verb: &Verb, out: &mut driver::Output) -> Result<Done, Failure> {
     }
 }
 
+/// What a warning after `protocol`'s decode may suggest ([`driver::Hints`]).
+fn hints(protocol: &DecodeProtocol) -> driver::Hints {
+    let hex = |common: &driver::DecodeCommon| (!common.hex).then_some("--hex");
+    match protocol {
+        DecodeProtocol::Omnitiles(args) => (
+            hex(&args.common)
+                .filter(|_| !args.datagrams)
+                .map(|_| "--hex, or --datagrams when each line is one datagram"),
+            "--from and --layout",
+            !args.datagrams
+                && args.from != omnitiles::Side::Host
+                && !args.layout.iter().any(|set| set.contains(Layout::Spi45)),
+        ),
+        DecodeProtocol::Pixy2(args) => (hex(&args.common), "--from", false),
+        DecodeProtocol::Telemetrix(args) => (hex(&args.common), "--from and --dialect", false),
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let mut out = driver::Output::stdout();
@@ -171,14 +190,22 @@ fn main() -> ExitCode {
         (Err(failure), _) | (Ok(_), Err(failure)) => return failure.report(),
         (Ok(done), Ok(())) => done,
     };
-    match done {
-        Done::Decoded(decoded) => {
+    match (done, &cli.command) {
+        (Done::Decoded(decoded), Verb::Decode { protocol }) => {
+            // An input that could not be read at all has nothing to sum up.
+            if let (Some(failure @ Failure::Io { .. }), 0) = (&decoded.failure, decoded.stats.bytes)
+            {
+                return failure.report();
+            }
             eprintln!("{}", driver::summary(&decoded.stats));
+            if let Some(warning) = driver::warning(&decoded.stats, &out, hints(protocol)) {
+                eprintln!("robowire: warning: {warning}");
+            }
             match decoded.failure {
                 Some(failure) => failure.report(),
                 None => ExitCode::SUCCESS,
             }
         }
-        Done::Encoded => ExitCode::SUCCESS,
+        _ => ExitCode::SUCCESS,
     }
 }

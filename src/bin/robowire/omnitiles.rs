@@ -221,18 +221,20 @@ where
                 })
             }
         };
-        if let Err(message) = hex_line(line, &mut datagram) {
-            eprintln!("robowire: {}: line {number}: {message}", lines.name());
+        if let Err(message) = hex_line(number, line, &mut datagram) {
+            eprintln!("robowire: {}: {message}", lines.name());
             bad += 1;
             continue;
         }
         if datagram.is_empty() {
             continue;
         }
+        printer.observe(&datagram);
         for event in decoder.decode(&datagram) {
             printer.event(event)?;
         }
     }
+    let bad = bad + lines.too_long();
     let failure = (bad > 0).then(|| {
         let s = if bad == 1 { "" } else { "s" };
         Failure::Reported(format!("{bad} invalid datagram line{s}"))

@@ -1,0 +1,384 @@
+//! What the `robowire` binary says on stderr about its input: encode's bad
+//! lines (too long, not UTF-8, a byte-order mark, invalid JSON), inputs that
+//! cannot be read, where hex text goes wrong, and the warnings about a
+//! misleading decode, which never change stdout or the exit status.
+
+#![cfg(feature = "cli")]
+
+mod cli_common;
+
+use cli_common::{data, data_arg, run, summary_line};
+
+const MAX_LINE: usize = 1 << 20;
+
+// ---------------------------------------------------------------- encode's bad lines
+
+#[test]
+fn encode_skips_a_line_over_the_limit_and_goes_on() {
+    let long = format!(r#"{{"type":"ping","pad":"{}"}}"#, "x".repeat(MAX_LINE));
+    // The long line in the middle, and again as the last line without a newline.
+    let input = format!("{{\"type\":\"ping\"}}\n{long}\n{{\"type\":\"base_brake\"}}\n{long}");
+    let r = run(&["encode", "omnitiles", "--hex"], input.as_bytes());
+    assert_eq!(r.code, 2);
+    assert_eq!(r.text(), "a5 50 50\na5 71 71\n");
+    assert_eq!(
+        r.stderr,
+        "robowire: stdin: line 2: longer than 1048576 bytes\n\
+         robowire: stdin: line 4: longer than 1048576 bytes\n\
+         robowire: 2 malformed lines\n"
+    );
+    // A line of exactly the limit is read.
+    let padded = format!(r#"{{"type":"ping"}}{}"#, " ".repeat(MAX_LINE - 15));
+    let r = run(&["encode", "omnitiles", "--hex"], padded.as_bytes());
+    assert_eq!((r.code, r.text(), r.stderr.as_str()), (0, "a5 50 50\n", ""));
+}
+
+#[test]
+fn datagrams_skip_a_line_over_the_limit_and_go_on() {
+    let input = format!("a5 50 50\n{}\na5 71 71\n", "0".repeat(MAX_LINE + 2));
+    let r = run(&["decode", "omnitiles", "--datagrams"], input.as_bytes());
+    assert_eq!(r.code, 2);
+    assert_eq!(
+        r.lines(),
+        [
+            r#"{"offset":0,"len":3,"type":"ping"}"#,
+            r#"{"offset":3,"len":3,"type":"base_brake"}"#,
+        ]
+    );
+    assert_eq!(
+        r.stderr,
+        "robowire: stdin: line 2: longer than 1048576 bytes\n".to_owned()
+            + &summary_line([2, 6, 0, 0, 0, 0])
+            + "robowire: 1 invalid datagram line\n"
+    );
+}
+
+#[test]
+fn encode_says_where_a_line_is_not_utf8_or_not_json() {
+    let input = b"{\"type\":\"ping\"}\n{\"type\":\"pi\xffng\"}\n{\"type\":\"ping\"\n{\"type\":\"base_brake\"}\n";
+    let r = run(&["encode", "omnitiles", "--hex"], input);
+    assert_eq!(r.code, 2);
+    assert_eq!(r.text(), "a5 50 50\na5 71 71\n");
+    // One position, the tool's: no serde "at line 1 column 14" inside it.
+    assert_eq!(
+        r.stderr,
+        "robowire: stdin: line 2, column 12: not UTF-8 text (byte 0xff)\n\
+         robowire: stdin: line 3, column 14: not valid JSON: EOF while parsing an object\n\
+         robowire: 2 malformed lines\n"
+    );
+    for protocol in ["pixy2", "telemetrix"] {
+        let r = run(&["encode", protocol], b"\n{\"type\":\"get_fps\" 1}\n");
+        assert_eq!((r.code, r.stdout.len()), (2, 0));
+        assert_eq!(
+            r.stderr,
+            "robowire: stdin: line 2, column 19: not valid JSON: \
+             expected `,` or `}`\n\
+             robowire: 1 malformed line\n"
+        );
+    }
+}
+
+#[test]
+fn encode_ignores_a_utf8_byte_order_mark_and_stops_at_utf16() {
+    let r = run(
+        &["encode", "omnitiles", "--hex"],
+        b"\xef\xbb\xbf{\"type\":\"ping\"}\n{\"type\":\"base_brake\"}\n",
+    );
+    assert_eq!(r.code, 0);
+    assert_eq!(r.text(), "a5 50 50\na5 71 71\n");
+    assert_eq!(
+        r.stderr,
+        "robowire: stdin: line 1: ignoring a UTF-8 byte-order mark\n"
+    );
+    let utf16: Vec<u8> = "\u{feff}{\"type\":\"ping\"}\n"
+        .encode_utf16()
+        .flat_map(u16::to_le_bytes)
+        .collect();
+    let r = run(&["encode", "omnitiles", "--hex"], &utf16);
+    assert_eq!((r.code, r.stdout.len()), (2, 0));
+    assert_eq!(
+        r.stderr,
+        "robowire: stdin: the input is UTF-16 (it starts with a byte-order mark); \
+         JSON lines must be UTF-8\n"
+    );
+}
+
+// ---------------------------------------------------------------- inputs that cannot be read
+
+#[test]
+fn a_directory_fails_before_any_summary() {
+    let dir = data_arg("");
+    let dir = dir.trim_end_matches('/');
+    for args in [
+        &["decode", "omnitiles", dir][..],
+        &["decode", "omnitiles", "--hex", dir],
+        &["decode", "omnitiles", "--datagrams", dir],
+        &["decode", "pixy2", dir],
+        &["decode", "telemetrix", dir],
+        &["encode", "telemetrix", dir],
+    ] {
+        let r = run(args, b"");
+        assert_eq!((r.code, r.stdout.len()), (1, 0), "{args:?}");
+        // The system's own words ("Is a directory"), on one line.
+        assert!(
+            r.stderr.starts_with(&format!("robowire: {dir}: ")),
+            "{args:?}"
+        );
+        assert_eq!(r.stderr.lines().count(), 1, "{args:?}: {}", r.stderr);
+    }
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn an_unreadable_file_fails_before_any_summary() {
+    // Opens, and its first read fails (address 0 is not mapped).
+    for args in [
+        &["decode", "omnitiles", "/proc/self/mem"][..],
+        &["decode", "omnitiles", "--datagrams", "/proc/self/mem"],
+    ] {
+        let r = run(args, b"");
+        assert_eq!((r.code, r.stdout.len()), (1, 0), "{args:?}");
+        assert!(
+            r.stderr.starts_with("robowire: /proc/self/mem: ") && r.stderr.lines().count() == 1,
+            "{args:?}: {}",
+            r.stderr
+        );
+    }
+}
+
+#[test]
+fn hex_and_datagrams_report_positions_alike() {
+    let text = b"a5 50 50\n  0xa5 0x71 7 0x";
+    let hex = run(&["decode", "omnitiles", "--hex"], text);
+    let datagrams = run(&["decode", "omnitiles", "--datagrams"], text);
+    assert_eq!((hex.code, datagrams.code), (2, 2));
+    // The last digit has no pair: the `7`, not the `0` of the `0x` after it.
+    assert!(hex
+        .stderr
+        .ends_with("robowire: stdin: line 2, column 13: odd number of hex digits\n"));
+    assert!(datagrams
+        .stderr
+        .starts_with("robowire: stdin: line 2, column 13: odd number of hex digits\n"));
+    let text = b"a5 50 50\n a5 7q 71\n";
+    let hex = run(&["decode", "omnitiles", "--hex"], text);
+    let datagrams = run(&["decode", "omnitiles", "--datagrams"], text);
+    assert!(hex
+        .stderr
+        .ends_with("robowire: stdin: line 2, column 6: invalid hex digit 'q'\n"));
+    assert!(datagrams
+        .stderr
+        .starts_with("robowire: stdin: line 2, column 6: invalid hex digit 'q'\n"));
+}
+
+// ---------------------------------------------------------------- warnings
+
+/// The stderr of a decode that warns: the summary, then the warning.
+fn warned(counts: [u64; 6], warning: &str) -> String {
+    summary_line(counts) + "robowire: warning: " + warning + "\n"
+}
+
+#[test]
+fn hex_text_without_hex_warns() {
+    let r = run(
+        &["decode", "omnitiles", &data_arg("ble_notifications.hex")],
+        b"",
+    );
+    assert_eq!((r.code, r.stdout.len()), (0, 0));
+    assert_eq!(
+        r.stderr,
+        warned(
+            [0, 12720, 12720, 0, 0, 0],
+            "the input looks like hex text: read it with --hex, \
+             or --datagrams when each line is one datagram"
+        )
+    );
+    let r = run(&["decode", "pixy2"], b"0xae, 0xc1, 0x0e, 0x00\n");
+    assert_eq!((r.code, r.stdout.len()), (0, 0));
+    assert_eq!(
+        r.stderr,
+        warned(
+            [0, 23, 23, 0, 0, 0],
+            "the input looks like hex text: read it with --hex"
+        )
+    );
+    // Read as hex, the same text decodes and nothing is said.
+    let r = run(&["decode", "pixy2", "--hex"], b"0xae, 0xc1, 0x0e, 0x00\n");
+    assert_eq!((r.code, r.lines().len()), (0, 1));
+    assert_eq!(r.stderr, summary_line([1, 4, 0, 0, 0, 0]));
+}
+
+#[test]
+fn the_wrong_protocol_warns() {
+    let capture = data_arg("ble_telemetry.bin");
+    let r = run(&["decode", "telemetrix", &capture], b"");
+    // Output and status as without the warning: 69 false frames, status 0.
+    assert_eq!((r.code, r.lines().len()), (0, 69));
+    assert_eq!(
+        r.stderr,
+        warned(
+            [69, 15920, 15332, 0, 15059, 0],
+            "most of the input did not decode (96 % skipped, 15059 candidates rejected, \
+             69 frames): check the protocol, --from and --dialect; frames found this way may \
+             be false"
+        )
+    );
+    let r = run(&["decode", "pixy2", &capture], b"");
+    assert_eq!((r.code, r.stdout.len()), (0, 0));
+    assert_eq!(
+        r.stderr,
+        warned(
+            [0, 15920, 15920, 0, 0, 0],
+            "most of the input did not decode (100 % skipped, 0 candidates rejected, 0 frames): \
+             check the protocol, --from; frames found this way may be false"
+        )
+    );
+    // The right protocol with the wrong direction.
+    let commands = data_arg("host_commands.bin");
+    let r = run(&["decode", "omnitiles", "--from", "tile", &commands], b"");
+    assert_eq!((r.code, r.stdout.len()), (0, 0));
+    assert!(r.stderr.ends_with(
+        "0 frames): check the protocol, --from and --layout; frames found this way may be false\n"
+    ));
+}
+
+#[test]
+fn noise_alone_and_zero_padding_do_not_warn() {
+    // A little noise is not worth a warning, nor is zero padding (SPI
+    // command buffers are mostly padding).
+    let r = run(&["decode", "omnitiles"], &[0x55; 63]);
+    assert_eq!(r.stderr, summary_line([0, 63, 63, 0, 0, 0]));
+    let spi = data_arg("spi_commands.hex");
+    let r = run(
+        &["decode", "omnitiles", "--from", "host", "--datagrams", &spi],
+        b"",
+    );
+    assert_eq!(r.stderr, summary_line([44, 5120, 4953, 0, 0, 0]));
+    let r = run(
+        &["decode", "omnitiles", "--from", "host", "--hex", &spi],
+        b"",
+    );
+    assert_eq!(r.stderr, summary_line([44, 5120, 4953, 0, 0, 0]));
+}
+
+#[test]
+fn spi_buffers_without_spi45_warn() {
+    let capture = data_arg("spi_telemetry.bin");
+    let warning = "the input looks like zero-padded SPI buffers: decode it with --layout spi45, \
+                   or with --datagrams and one buffer per line";
+    for from in ["any", "tile"] {
+        let r = run(&["decode", "omnitiles", "--from", from, &capture], b"");
+        // The one false 53-byte frame, as without the warning.
+        assert_eq!((r.code, r.lines().len()), (0, 1));
+        assert!(r.lines()[0].contains(r#""layout":"ble53""#));
+        assert_eq!(r.stderr, warned([1, 8192, 8139, 61, 17, 0], warning));
+    }
+    // The same bytes as hex text.
+    let bytes = std::fs::read(data("spi_telemetry.bin")).unwrap();
+    let text: String = bytes.iter().map(|b| format!("{b:02x} ")).collect();
+    let r = run(&["decode", "omnitiles", "--hex"], text.as_bytes());
+    assert_eq!((r.code, r.lines().len()), (0, 1));
+    assert_eq!(r.stderr, warned([1, 8192, 8139, 61, 17, 0], warning));
+    // With spi45 among the layouts, nothing is said.
+    let r = run(&["decode", "omnitiles", "--layout", "spi45", &capture], b"");
+    assert_eq!((r.code, r.lines().len()), (0, 64));
+    assert_eq!(r.stderr, summary_line([64, 8192, 5312, 0, 0, 0]));
+}
+
+/// A pseudo-terminal for the child's stdin, from the C library.
+#[cfg(target_os = "linux")]
+mod pty {
+    use std::ffi::CStr;
+    use std::fs::{File, OpenOptions};
+    use std::os::fd::AsRawFd;
+    use std::os::raw::{c_char, c_int};
+
+    extern "C" {
+        fn unlockpt(fd: c_int) -> c_int;
+        fn ptsname_r(fd: c_int, buf: *mut c_char, len: usize) -> c_int;
+    }
+
+    /// The controlling side and the terminal.
+    pub fn open() -> (File, File) {
+        let ptmx = OpenOptions::new()
+            .read(true)
+            .write(true)
+            .open("/dev/ptmx")
+            .unwrap();
+        let mut name = [0 as c_char; 128];
+        // SAFETY: `ptmx` is an open pseudo-terminal master and `name` is a
+        // writable buffer of the length given.
+        let path = unsafe {
+            assert_eq!(unlockpt(ptmx.as_raw_fd()), 0);
+            assert_eq!(
+                ptsname_r(ptmx.as_raw_fd(), name.as_mut_ptr(), name.len()),
+                0
+            );
+            CStr::from_ptr(name.as_ptr()).to_str().unwrap().to_owned()
+        };
+        let terminal = OpenOptions::new()
+            .read(true)
+            .write(true)
+            .open(path)
+            .unwrap();
+        (ptmx, terminal)
+    }
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_silent_terminal_on_stdin_is_told_to_type() {
+    use std::io::{BufRead, BufReader, Read, Write};
+    use std::process::{Command, Stdio};
+
+    let spawn = |terminal| {
+        Command::new(env!("CARGO_BIN_EXE_robowire"))
+            .args(["decode", "omnitiles", "--hex"])
+            .stdin(Stdio::from(terminal))
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    // Nothing typed: the tool says what it waits for, and then decodes what
+    // comes as usual.
+    let (mut ptmx, terminal) = pty::open();
+    let mut child = spawn(terminal);
+    let mut stderr = BufReader::new(child.stderr.take().unwrap());
+    let (sender, notice) = std::sync::mpsc::channel();
+    let reader = std::thread::spawn(move || {
+        let mut line = String::new();
+        stderr.read_line(&mut line).unwrap();
+        sender.send(line).unwrap();
+        let mut rest = String::new();
+        stderr.read_to_string(&mut rest).unwrap();
+        rest
+    });
+    // Not a measurement: a bound, so that a tool that never says it fails
+    // the test instead of hanging it.
+    let notice = notice.recv_timeout(std::time::Duration::from_secs(60));
+    if notice.is_err() {
+        child.kill().unwrap();
+    }
+    assert_eq!(
+        notice.unwrap(),
+        "robowire: waiting for input on stdin (a terminal): type or paste it and end it \
+         with Ctrl-D, or name an input file\n"
+    );
+    // A line, then end of input (Ctrl-D at the start of a line).
+    ptmx.write_all(b"a5 50 50\n\x04").unwrap();
+    let rest = reader.join().unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(out.stdout, b"{\"offset\":0,\"len\":3,\"type\":\"ping\"}\n");
+    assert_eq!(rest, summary_line([1, 3, 0, 0, 0, 0]));
+    // Input already there: no notice.
+    let (mut ptmx, terminal) = pty::open();
+    ptmx.write_all(b"a5 50 50\n\x04").unwrap();
+    let out = spawn(terminal).wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(out.stdout, b"{\"offset\":0,\"len\":3,\"type\":\"ping\"}\n");
+    assert_eq!(
+        String::from_utf8(out.stderr).unwrap(),
+        summary_line([1, 3, 0, 0, 0, 0])
+    );
+}
