@@ -48,3 +48,32 @@ fn feature_check_length_is_refused_however_the_bytes_arrive() {
         }
     }
 }
+
+/// `telemetrix_roundtrip`: an INA226 sensor report whose volts are a NaN.
+/// The owned form holds the frame's exact bytes; only its message compares
+/// unequal to itself (NaN), so the target now compares bytes.
+#[test]
+fn a_nan_reading_keeps_its_bytes_in_the_owned_form() {
+    let input = [
+        0x0b, 0x0a, 0x0b, 0x14, 0x05, 0x06, 0x03, 0x1f, 0xff, 0xff, 0x00, 0xff, 0xff, 0xa3, 0x14,
+        0x05,
+    ];
+    let mut found_nan = false;
+    for dialect in [Dialect::Mirte13, Dialect::Mirte12, Dialect::Upstream11] {
+        let mut decoder = HostDecoder::new(Framing::new().with_dialect(dialect));
+        let mut rest = &input[..];
+        while let Some(event) = decoder.decode(&mut rest) {
+            let Ok(frame) = event else { continue };
+            let owned = frame.message.to_buf_in(dialect).expect("own report");
+            assert_eq!(owned.frame(), frame.raw, "{dialect:?}");
+            let mut out = [0u8; 256];
+            let n = owned
+                .message()
+                .encode_in(dialect, &mut out)
+                .expect("re-encode");
+            assert_eq!(&out[..n], frame.raw, "{dialect:?}");
+            found_nan |= format!("{:?}", owned.message()).contains("NaN");
+        }
+    }
+    assert!(found_nan, "the input holds a NaN reading");
+}

@@ -32,7 +32,13 @@ fuzz_target!(|data: &[u8]| {
                 assert_eq!(&out[..n], frame.raw);
                 let owned = frame.message.to_buf_in(dialect).expect("own command");
                 assert_eq!(owned.frame(), frame.raw);
-                assert_eq!(owned.message(), frame.message);
+                // Compared as bytes: a float reading may be a NaN, which
+                // is not equal to itself.
+                let m = owned
+                    .message()
+                    .encode_in(dialect, &mut out)
+                    .expect("re-encode the owned form");
+                assert_eq!(&out[..m], frame.raw);
             }
         }
 
@@ -52,7 +58,13 @@ fuzz_target!(|data: &[u8]| {
                 assert_eq!(&out[..n], frame.raw);
                 let owned = frame.message.to_buf_in(dialect).expect("own report");
                 assert_eq!(owned.frame(), frame.raw);
-                assert_eq!(owned.message(), frame.message);
+                // Compared as bytes: a float reading may be a NaN, which
+                // is not equal to itself.
+                let m = owned
+                    .message()
+                    .encode_in(dialect, &mut out)
+                    .expect("re-encode the owned form");
+                assert_eq!(&out[..m], frame.raw);
             }
         }
 
