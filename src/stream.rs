@@ -482,16 +482,30 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
             self.need = 0;
         }
         // `len < N` holds between calls: a full buffer is always resolved.
-        self.buf[self.len] = byte;
+        // (Only a decoder without a buffer, `N == 0`, has no room: it can
+        // decode in place only, so the byte is skipped.)
+        let Some(slot) = self.buf.get_mut(self.len) else {
+            self.stats.skipped += 1;
+            self.synced = false;
+            return None;
+        };
+        *slot = byte;
         self.len += 1;
-        let step = self.step_buffered(&mut &[][..]);
+        // The byte path: resolve the stored bytes only, without the general
+        // step's handling of an input slice.
+        let step = self.step_stored();
         self.emit(step)
     }
 
     /// Collect the events that need no further input (after [`push`](Self::push)
     /// or a rejection): the same as [`decode`](Self::decode) with an empty input.
     pub fn poll(&mut self) -> Option<Event<'_, F::Message<'_>, F::Error>> {
-        self.decode(&mut &[][..])
+        self.apply_pending_drop();
+        if self.len == 0 {
+            return None;
+        }
+        let step = self.step_stored();
+        self.emit(step)
     }
 
     /// Decode a whole chunk: an iterator of owned events. Every byte of `input`
@@ -518,7 +532,7 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
         if self.len == 0 {
             return None;
         }
-        let error = match self.resolve(&self.buf[..self.len], true) {
+        let error = match self.resolve(self.stored(self.len), true) {
             Verdict::Frame(n) => return self.emit(Step::Buffered(n)),
             Verdict::Need(_) => self.reject_kind(self.framing.truncated(self.len)),
             Verdict::Reject(error) => self.reject_kind(error),
@@ -544,20 +558,41 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
             self.len = 0;
             return;
         }
-        self.buf.copy_within(n..self.len, 0);
+        self.shift_out(n, self.len);
         self.len -= n;
         self.realign_buffer();
     }
 
     /// Make `buf[0]` a candidate start again after its front was removed.
     fn realign_buffer(&mut self) {
-        let skip = self.framing.find_start(&self.buf[..self.len]);
+        let skip = self.framing.find_start(self.stored(self.len));
         if skip > 0 {
             self.synced = false;
-            self.buf.copy_within(skip..self.len, 0);
-            self.len -= skip;
+            self.shift_out(skip, self.len);
+            self.len -= skip.min(self.len);
             self.buf_offset += skip as u64;
             self.stats.skipped += skip as u64;
+        }
+    }
+
+    /// The first `len` bytes of the buffer (`len <= N` always holds; the
+    /// fallback only keeps panic paths out of the binary).
+    #[inline(always)]
+    fn stored(&self, len: usize) -> &[u8] {
+        prefix(&self.buf, len)
+    }
+
+    /// Move `buf[from..len]` to the front of the buffer.
+    #[inline]
+    fn shift_out(&mut self, from: usize, len: usize) {
+        if N <= SMALL_BUFFER {
+            // A small buffer moves whole, a constant count of bytes: cheaper
+            // than a call, and no `memmove` is linked.
+            for i in 0..N {
+                self.buf[i] = self.buf.get(i + from).copied().unwrap_or(0);
+            }
+        } else if from <= len && len <= N {
+            self.buf.copy_within(from..len, 0);
         }
     }
 
@@ -582,7 +617,12 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
         // Verification looks at no more than the buffer could hold, so its
         // answer is the same whether the bytes arrived in one chunk or many.
         let at_end = at_end && c.len() <= N;
-        let c = &c[..c.len().min(N)];
+        let c = prefix_of(c, N);
+        if n > c.len() {
+            // A frame longer than the buffer (found in place) could never
+            // wait for what follows it: accept it, as `wait_or_accept` would.
+            return Verdict::Frame(n);
+        }
         let mut p = 1;
         while p < n {
             p += self.framing.find_start(&c[p..n]);
@@ -629,7 +669,8 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
     /// Is the frame `c[..end]` followed by a plausible header or the end of
     /// input? `Err(n)`: cannot tell before `c` has `n` bytes.
     fn confirmed(&self, c: &[u8], end: usize, at_end: bool) -> Result<bool, usize> {
-        let after = &c[end..];
+        // `end <= c.len()` where this is called; an empty rest otherwise.
+        let after = c.get(end..).unwrap_or(&[]);
         let header_len = F::HEADER_LEN.max(1);
         if after.len() < header_len {
             // At the end of input only the end itself confirms: a header cut
@@ -683,7 +724,7 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
                     // Later bytes stay: the frame is dropped on the next call.
                     self.pending_drop = n;
                 }
-                (offset, &self.buf[..n])
+                (offset, prefix(&self.buf, n))
             }
         };
         Some(parse_counted(&self.framing, &mut self.stats, offset, raw))
@@ -705,20 +746,24 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
             return Step::Done;
         }
         let offset = self.stats.bytes + pos as u64;
-        let candidate = &data[pos..];
+        let candidate = data.get(pos..).unwrap_or(&[]);
         let error = match self.resolve(candidate, false) {
-            Verdict::Frame(n) => {
-                self.stats.bytes += (pos + n) as u64;
-                *input = &data[pos + n..];
-                self.synced = true;
-                return Step::InPlace {
-                    offset,
-                    raw: &candidate[..n],
-                };
-            }
+            // (`n <= candidate.len()` for a frame: `split_at_checked` only
+            // keeps a panic path out of the binary.)
+            Verdict::Frame(n) => match candidate.split_at_checked(n) {
+                Some((raw, rest)) => {
+                    self.stats.bytes += (pos + n) as u64;
+                    *input = rest;
+                    self.synced = true;
+                    return Step::InPlace { offset, raw };
+                }
+                None => self.reject_kind(self.framing.truncated(candidate.len())),
+            },
             Verdict::Need(n) if candidate.len() < N => {
                 // Only a frame that straddles the end of the chunk is copied.
-                self.buf[..candidate.len()].copy_from_slice(candidate);
+                if let Some(front) = self.buf.get_mut(..candidate.len()) {
+                    front.copy_from_slice(candidate);
+                }
                 self.len = candidate.len();
                 self.need = n.min(N);
                 self.buf_offset = offset;
@@ -735,8 +780,44 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
         self.synced = false;
         self.stats.skipped += 1;
         self.stats.bytes += (pos + 1) as u64;
-        *input = &data[pos + 1..];
+        *input = data.get(pos + 1..).unwrap_or(&[]);
         Step::Rejected(Rejected { offset, error })
+    }
+
+    /// A candidate is buffered and no input is offered (`push`, `poll`):
+    /// resolve the stored bytes. This is [`step_buffered`](Self::step_buffered)
+    /// with an empty input, without its input handling.
+    fn step_stored<'i>(&mut self) -> Step<'i, F::Error> {
+        let mut stored = self.len;
+        // A start that could not be confirmed (a sync word cut in two) may
+        // turn out to be none now: drop it silently, as `step_buffered` does.
+        let skip = self.framing.find_start(self.stored(stored));
+        if skip > 0 {
+            self.shift_out(skip, stored);
+            self.buf_offset += skip as u64;
+            self.stats.skipped += skip as u64;
+            self.synced = false;
+            self.need = 0;
+            stored -= skip.min(stored);
+            self.len = stored;
+            if stored == 0 {
+                return Step::Done;
+            }
+        }
+        if stored < self.need {
+            return Step::Done;
+        }
+        let error = match self.resolve(self.stored(stored), false) {
+            Verdict::Frame(n) => return Step::Buffered(n),
+            Verdict::Need(n) if stored < N => {
+                self.need = n.min(N);
+                return Step::Done;
+            }
+            Verdict::Need(_) => self.reject_kind(self.framing.truncated(stored)),
+            Verdict::Reject(error) => self.reject_kind(error),
+            Verdict::Superseded(n) => self.supersede_kind(n),
+        };
+        self.reject_buffered(error)
     }
 
     /// A candidate is buffered: add input bytes to it until it resolves.
@@ -749,14 +830,16 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
         let take = data.len().min(N - stored);
         // Append input tentatively: bytes the candidate does not use are given
         // back to the caller.
-        self.buf[stored..stored + take].copy_from_slice(&data[..take]);
+        if let Some(tail) = self.buf.get_mut(stored..stored + take) {
+            tail.copy_from_slice(&data[..take]);
+        }
         let total = stored + take;
         // A start that could not be confirmed at the end of the last chunk (a
         // sync word cut in two) may turn out to be none: drop it silently, as
         // `find_start` would have if the bytes had come in one chunk.
-        let skip = self.framing.find_start(&self.buf[..total]).min(stored);
+        let skip = self.framing.find_start(self.stored(total)).min(stored);
         if skip > 0 {
-            self.buf.copy_within(skip..total, 0);
+            self.shift_out(skip, total);
             self.buf_offset += skip as u64;
             self.stats.skipped += skip as u64;
             self.synced = false;
@@ -775,9 +858,9 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
             *input = &data[take..];
             return Step::Done;
         }
-        match self.resolve(&self.buf[..total], false) {
+        match self.resolve(self.stored(total), false) {
             Verdict::Frame(n) => {
-                let used = n.saturating_sub(stored);
+                let used = n.saturating_sub(stored).min(take);
                 self.stats.bytes += used as u64;
                 *input = &data[used..];
                 // Stored bytes past the frame stay buffered (possible only
@@ -814,8 +897,8 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
         self.need = 0;
         self.synced = false;
         self.stats.skipped += 1;
-        self.buf.copy_within(1..self.len, 0);
-        self.len -= 1;
+        self.shift_out(1, self.len);
+        self.len = self.len.saturating_sub(1);
         self.buf_offset += 1;
         self.realign_buffer();
         Step::Rejected(Rejected { offset, error })
@@ -836,6 +919,19 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
         self.stats.superseded += 1;
         self.framing.superseded(n)
     }
+}
+
+/// The first `len` bytes of `bytes`, or all of them.
+#[inline(always)]
+fn prefix_of(bytes: &[u8], len: usize) -> &[u8] {
+    bytes.get(..len).unwrap_or(bytes)
+}
+
+/// The first `len` bytes of `buf`, or all of it (`len <= N` always holds
+/// where this is called; the fallback keeps panic paths out of the binary).
+#[inline(always)]
+fn prefix<const N: usize>(buf: &[u8; N], len: usize) -> &[u8] {
+    buf.get(..len).unwrap_or(buf)
 }
 
 #[inline(always)]
@@ -922,6 +1018,9 @@ enum Step<'a, E> {
     /// A frame of this many bytes at the front of the internal buffer.
     Buffered(usize),
 }
+
+/// Buffers up to this size are moved whole (see `shift_out`).
+const SMALL_BUFFER: usize = 32;
 
 enum Verdict<E> {
     Need(usize),
