@@ -41,7 +41,7 @@ mod small_buffer {
     use proptest::prelude::*;
     use robowire::omnitiles::{self, Command, Device, Framing, Motor, DEVICE_BUFFER};
     use robowire::stream::{owned_event, OwnedEvent};
-    use robowire::{Encode, FrameBuf, StreamDecoder};
+    use robowire::{FrameBuf, StreamDecoder};
 
     type Rules = Framing<Device>;
 
@@ -128,6 +128,37 @@ mod small_buffer {
         (events, decoder.stats())
     }
 
+    fn stats_u64<C: robowire::Counter>(stats: robowire::Stats<C>) -> [u64; 8] {
+        [
+            stats.bytes.to_u64(),
+            stats.frames.to_u64(),
+            stats.frame_bytes.to_u64(),
+            stats.skipped.to_u64(),
+            stats.checksum_errors.to_u64(),
+            stats.rejected.to_u64(),
+            stats.malformed.to_u64(),
+            stats.superseded.to_u64(),
+        ]
+    }
+
+    /// Decode with counters of type `C`, byte by byte and in chunks.
+    fn decode_counted<C: robowire::Counter>(
+        input: &[u8],
+        chunk: usize,
+    ) -> (Vec<OwnedEvent<Rules>>, [u64; 8], u64) {
+        let mut decoder = StreamDecoder::<Rules, DEVICE_BUFFER, C>::new(Framing::new());
+        let mut events = Vec::new();
+        for mut piece in input.chunks(chunk.max(1)) {
+            while let Some(event) = decoder.decode(&mut piece) {
+                events.push(owned_event::<Rules>(event));
+            }
+        }
+        while let Some(event) = decoder.finish() {
+            events.push(owned_event::<Rules>(event));
+        }
+        (events, stats_u64(decoder.stats()), decoder.position())
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(if cfg!(miri) { 8 } else { 512 }))]
 
@@ -140,5 +171,29 @@ mod small_buffer {
             prop_assert_eq!(&decode::<DEVICE_BUFFER>(&input, chunk), &reference);
             prop_assert_eq!(&push(&input), &reference);
         }
+
+        /// `u32` counters count and place frames as `u64` ones do.
+        #[test]
+        fn narrow_counters_count_the_same(input in stream(), chunk in 1usize..9) {
+            let wide = decode_counted::<u64>(&input, chunk);
+            prop_assert_eq!(&decode_counted::<u32>(&input, chunk), &wide);
+            prop_assert_eq!(&decode_counted::<u16>(&input, chunk), &wide);
+        }
     }
+}
+
+#[test]
+fn narrow_counters_wrap_around_and_the_offsets_with_them() {
+    use robowire::omnitiles::DEVICE_BUFFER;
+    let mut decoder = StreamDecoder::<Framing<Device>, DEVICE_BUFFER, u16>::new(Framing::new());
+    let garbage = vec![0u8; 65_535];
+    let mut input = &garbage[..];
+    assert!(decoder.decode(&mut input).is_none());
+    assert_eq!(decoder.position(), 65_535);
+    let mut input = &[0xa5, 0x50, 0x50][..];
+    let frame = decoder.decode(&mut input).unwrap().unwrap();
+    assert_eq!((frame.offset, frame.message), (65_535, Command::Ping));
+    let stats = decoder.stats();
+    assert_eq!((stats.bytes, stats.skipped, stats.frames), (2, 65_535, 1));
+    assert_eq!(decoder.position(), 2);
 }
