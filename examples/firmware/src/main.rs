@@ -36,15 +36,19 @@ use cortex_m::peripheral::NVIC;
 use cortex_m_rt::{entry, interrupt};
 use critical_section::Mutex;
 use embedded_io::Write;
-use robowire::Encode;
-use robowire::omnitiles::{self, Command, DeviceDecoder, Layout, Telemetry, units};
+use robowire::omnitiles::{Command, DEVICE_BUFFER, Device, Framing, Layout, Telemetry, units};
+use robowire::{Encode, StreamDecoder};
 
 use vectors::interrupt;
 
+/// A firmware-sized command decoder: the 14-byte buffer its framing needs
+/// (`DEVICE_BUFFER`) and `u32` counters, 64 bytes of RAM in all.
+type CommandDecoder = StreamDecoder<Framing<Device>, DEVICE_BUFFER, u32>;
+
 /// The command decoder, fed by the USART2 interrupt one byte at a time.
 /// `const fn` construction: no initialisation code, no `Option`.
-static DECODER: Mutex<RefCell<DeviceDecoder>> =
-    Mutex::new(RefCell::new(omnitiles::device_decoder()));
+static DECODER: Mutex<RefCell<CommandDecoder>> =
+    Mutex::new(RefCell::new(StreamDecoder::new(Framing::new())));
 
 // The tile's state, shared with handlers that are not shown (the PWM timer
 // reads the duties and targets, the ADC's DMA interrupt writes the positions).
@@ -133,7 +137,7 @@ fn main() -> ! {
 
 /// Link-quality counters, for a debugger or a status command.
 #[allow(dead_code)]
-fn link_stats() -> robowire::Stats {
+fn link_stats() -> robowire::Stats<u32> {
     critical_section::with(|cs| DECODER.borrow_ref(cs).stats())
 }
 

@@ -3,11 +3,16 @@
 #![no_std]
 #![no_main]
 
-use robowire::omnitiles::{self, Command, DeviceDecoder};
+use robowire::omnitiles::{Command, Device, Framing, DEVICE_BUFFER};
+use robowire::StreamDecoder;
 use robowire_size::{out, read_byte, Static};
 
+/// The firmware-sized command decoder: the framing's 14-byte buffer and
+/// `u32` counters.
+type DeviceDecoder = StreamDecoder<Framing<Device>, DEVICE_BUFFER, u32>;
+
 #[no_mangle]
-static DECODER: Static<DeviceDecoder> = Static::new(omnitiles::device_decoder());
+static DECODER: Static<DeviceDecoder> = Static::new(StreamDecoder::new(Framing::new()));
 
 fn on_command(command: Command) {
     match command {
