@@ -571,8 +571,7 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
         self.len += 1;
         // The byte path: resolve the stored bytes only, without the general
         // step's handling of an input slice.
-        let step = self.step_stored();
-        self.emit(step)
+        self.next_stored()
     }
 
     /// Collect the events that need no further input (after [`push`](Self::push)
@@ -582,6 +581,12 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
         if self.len == 0 {
             return None;
         }
+        self.next_stored()
+    }
+
+    /// The byte path's one place to resolve and parse (`push` and `poll`
+    /// share it, so a firmware links the message parser once).
+    fn next_stored(&mut self) -> Option<Event<'_, F::Message<'_>, F::Error>> {
         let step = self.step_stored();
         self.emit(step)
     }
