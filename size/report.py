@@ -38,27 +38,27 @@ ROWS = [
 # and what limits them.
 KNOWN = {
     "OmniTiles command decoder, push/poll": (
-        3000,
-        "the engine's candidate handling (step_stored, realignment) and the resync verification; the 256-byte command-length table",
+        1950,
+        "the byte path's candidate handling and parse (840 B), the resync verification (480 B with its confirmation), realignment and shifts",
     ),
     "OmniTiles command decoder, decode on a slice": (
-        5200,
-        "both paths (in place and buffered) inline into the caller, the resync verification, memcpy for a straddling frame",
+        3950,
+        "both paths (in place and buffered) inline into the caller's loop, the resync verification, memcpy for a frame cut by a chunk",
     ),
     "OmniTiles 53-byte telemetry encoder": (
         1650,
         "the layout-generic encoder (offset table, optional fields, range checks), memcpy and memclr",
     ),
     "Telemetrix command decoder (Pico side)": (
-        7100,
-        "the command parser (parse_command alone is 5 KB)",
+        7600,
+        "the command parser (parse_command alone is 5 KB); memcpy of its large event out of the shared byte path",
     ),
     "Pixy2 request decoder (camera side)": (
         6200,
         "memmove and memcpy for its 144-byte buffer (2.3 KB), the request parser, the framing's sync search",
     ),
     "examples/firmware, total flash": (
-        5400,
+        4350,
         "the engine and verification (as the push row), the telemetry encoder, cortex-m-rt",
     ),
     "RAM of the commands-only OmniTiles decoder": (
