@@ -102,6 +102,13 @@
 //!   (they are called across crates) — OmniTiles' `check` is `#[inline(always)]`.
 //! * **Buffer fast paths.** A buffered frame that was all the buffer held empties
 //!   the buffer when it is emitted (no copy, no rescan on the next call).
+//! * **A byte path for firmware.** `push` and `poll` resolve the stored bytes
+//!   on a path of their own (no input slice to hand back) that parses in one
+//!   place, so a firmware fed by a receive interrupt links neither the
+//!   in-place step nor two copies of the parser. A buffer of up to 32 bytes
+//!   is shifted whole, a constant count, so no `memmove` is linked; and no
+//!   step can panic (slices are taken with `get`), which the size report
+//!   (`size/report.py`) checks on the final binaries.
 //! * **What a framing can do** (as OmniTiles does): answer `find_start` from the
 //!   first byte when it is a start byte before calling `memchr` (the next frame
 //!   usually starts right there); read fixed-size frames through
