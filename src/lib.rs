@@ -129,7 +129,7 @@ pub use encode::{Encode, EncodeError, FrameBuf};
 #[allow(deprecated)]
 pub use stream::Framed;
 pub use stream::{
-    Check, Event, Feed, Flush, Frame, FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats,
+    Check, Counter, Event, Feed, Flush, Frame, FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats,
     StreamDecoder,
 };
 

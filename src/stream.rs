@@ -102,6 +102,13 @@
 //!   (they are called across crates) — OmniTiles' `check` is `#[inline(always)]`.
 //! * **Buffer fast paths.** A buffered frame that was all the buffer held empties
 //!   the buffer when it is emitted (no copy, no rescan on the next call).
+//! * **A byte path for firmware.** `push` and `poll` resolve the stored bytes
+//!   on a path of their own (no input slice to hand back) that parses in one
+//!   place, so a firmware fed by a receive interrupt links neither the
+//!   in-place step nor two copies of the parser. A buffer of up to 32 bytes
+//!   is shifted whole, a constant count, so no `memmove` is linked; and no
+//!   step can panic (slices are taken with `get`), which the size report
+//!   (`size/report.py`) checks on the final binaries.
 //! * **What a framing can do** (as OmniTiles does): answer `find_start` from the
 //!   first byte when it is a start byte before calling `memchr` (the next frame
 //!   usually starts right there); read fixed-size frames through
@@ -282,59 +289,132 @@ pub type Event<'a, M, E> = Result<Frame<'a, M>, Rejected<E>>;
 
 /// Link-quality counters. They always add up:
 /// `bytes == frame_bytes + skipped + buffered` (see [`StreamDecoder::buffered`]).
+///
+/// `C` is their integer type, the decoder's choice (see [`Counter`]): `u64`
+/// by default, `u32` or `u16` where RAM and code are scarce. Narrow counters
+/// wrap around, and so do the stream offsets the decoder reports with them.
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 #[non_exhaustive]
-pub struct Stats {
+pub struct Stats<C = u64> {
     /// Bytes taken from the caller's input.
-    pub bytes: u64,
+    pub bytes: C,
     /// Frames that passed framing (parsed or not).
-    pub frames: u64,
+    pub frames: C,
     /// Bytes that belonged to those frames.
-    pub frame_bytes: u64,
+    pub frame_bytes: C,
     /// Bytes that belonged to no frame: garbage between frames and the first
     /// byte of every rejected candidate.
-    pub skipped: u64,
+    pub skipped: C,
     /// Candidates rejected for a bad checksum.
-    pub checksum_errors: u64,
+    pub checksum_errors: C,
     /// Candidates rejected for any other reason (unknown id, impossible length,
     /// truncation at the end of input).
-    pub rejected: u64,
+    pub rejected: C,
     /// Frames whose integrity was fine but whose contents did not parse.
-    pub malformed: u64,
+    pub malformed: C,
     /// Candidates that validated after a resync but were set aside for an
     /// overlapping frame that what follows confirmed.
-    pub superseded: u64,
+    pub superseded: C,
 }
 
 impl Stats {
     /// All counters zero.
     pub const fn new() -> Stats {
+        Stats::zero()
+    }
+}
+
+impl<C: Counter> Stats<C> {
+    /// All counters zero, of any [`Counter`] type (`Stats::<u32>::zero()`).
+    pub const fn zero() -> Stats<C> {
         Stats {
-            bytes: 0,
-            frames: 0,
-            frame_bytes: 0,
-            skipped: 0,
-            checksum_errors: 0,
-            rejected: 0,
-            malformed: 0,
-            superseded: 0,
+            bytes: C::ZERO,
+            frames: C::ZERO,
+            frame_bytes: C::ZERO,
+            skipped: C::ZERO,
+            checksum_errors: C::ZERO,
+            rejected: C::ZERO,
+            malformed: C::ZERO,
+            superseded: C::ZERO,
         }
     }
 
     /// Add another decoder's counters to these.
-    pub fn add(&mut self, other: &Stats) {
-        self.bytes += other.bytes;
-        self.frames += other.frames;
-        self.frame_bytes += other.frame_bytes;
-        self.skipped += other.skipped;
-        self.checksum_errors += other.checksum_errors;
-        self.rejected += other.rejected;
-        self.malformed += other.malformed;
-        self.superseded += other.superseded;
+    pub fn add(&mut self, other: &Stats<C>) {
+        self.bytes = self.bytes.sum(other.bytes);
+        self.frames = self.frames.sum(other.frames);
+        self.frame_bytes = self.frame_bytes.sum(other.frame_bytes);
+        self.skipped = self.skipped.sum(other.skipped);
+        self.checksum_errors = self.checksum_errors.sum(other.checksum_errors);
+        self.rejected = self.rejected.sum(other.rejected);
+        self.malformed = self.malformed.sum(other.malformed);
+        self.superseded = self.superseded.sum(other.superseded);
     }
 }
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for u16 {}
+    impl Sealed for u32 {}
+    impl Sealed for u64 {}
+}
+
+/// The integer type of a decoder's [`Stats`] and of the stream offset it
+/// keeps: `u64` (the default), `u32` or `u16` (sealed).
+///
+/// On a 32-bit microcontroller `u32` counters halve the counters' RAM (32
+/// bytes instead of 64) and their code (one add instead of an add with
+/// carry); they wrap after 4 GiB, and the offsets in events wrap with them.
+///
+/// ```
+/// use robowire::omnitiles::{Device, Framing, DEVICE_BUFFER};
+/// use robowire::StreamDecoder;
+///
+/// let mut decoder: StreamDecoder<Framing<Device>, DEVICE_BUFFER, u32> =
+///     StreamDecoder::new(Framing::new());
+/// let mut input = &[0xa5, 0x50, 0x50][..];
+/// while decoder.decode(&mut input).is_some() {}
+/// let frames: u32 = decoder.stats().frames;
+/// assert_eq!(frames, 1);
+/// ```
+pub trait Counter:
+    sealed::Sealed + Copy + Eq + Ord + Default + core::hash::Hash + fmt::Debug + fmt::Display + 'static
+{
+    /// Zero.
+    const ZERO: Self;
+    /// `self + n`, wrapping.
+    #[doc(hidden)]
+    fn plus(self, n: usize) -> Self;
+    /// `self + other`, wrapping.
+    #[doc(hidden)]
+    fn sum(self, other: Self) -> Self;
+    /// The value as a `u64` (an offset in an event).
+    fn to_u64(self) -> u64;
+}
+
+macro_rules! counter {
+    ($($t:ty),*) => {$(
+        impl Counter for $t {
+            const ZERO: $t = 0;
+            #[inline(always)]
+            fn plus(self, n: usize) -> $t {
+                self.wrapping_add(n as $t)
+            }
+            #[inline(always)]
+            fn sum(self, other: $t) -> $t {
+                self.wrapping_add(other)
+            }
+            #[inline(always)]
+            fn to_u64(self) -> u64 {
+                self as u64
+            }
+        }
+    )*};
+}
+
+counter!(u16, u32, u64);
 
 /// One line, as the `robowire` tool's summary prints it:
 /// `2 frames, 20 bytes, 11 bytes skipped, 1 checksum failure, 2 other
@@ -349,24 +429,24 @@ impl Stats {
 ///     "1 frame, 4 bytes, 1 byte skipped, 0 checksum failures, 0 other rejections, 0 malformed"
 /// );
 /// ```
-impl fmt::Display for Stats {
+impl<C: Counter> fmt::Display for Stats<C> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let s = |n: u64| if n == 1 { "" } else { "s" };
-        let rejected = self.rejected + self.superseded;
+        let rejected = self.rejected.sum(self.superseded);
         write!(
             f,
             "{} frame{}, {} byte{}, {} byte{} skipped, {} checksum failure{}, \
              {} other rejection{}, {} malformed",
             self.frames,
-            s(self.frames),
+            s(self.frames.to_u64()),
             self.bytes,
-            s(self.bytes),
+            s(self.bytes.to_u64()),
             self.skipped,
-            s(self.skipped),
+            s(self.skipped.to_u64()),
             self.checksum_errors,
-            s(self.checksum_errors),
+            s(self.checksum_errors.to_u64()),
             rejected,
-            s(rejected),
+            s(rejected.to_u64()),
             self.malformed
         )
     }
@@ -392,8 +472,11 @@ impl fmt::Display for Stats {
 /// decoder resyncs by one, so the frame inside it is found. A candidate at the
 /// very start of the stream or directly after a frame is trusted, so a clean
 /// stream is never delayed or slowed by this.
+///
+/// `C` is the integer type of the counters and the stream offset (see
+/// [`Counter`]): `u64` unless you name another.
 #[derive(Debug, Clone)]
-pub struct StreamDecoder<F, const N: usize> {
+pub struct StreamDecoder<F, const N: usize, C = u64> {
     framing: F,
     buf: [u8; N],
     /// Bytes of the current candidate held in `buf` (from previous inputs).
@@ -402,7 +485,7 @@ pub struct StreamDecoder<F, const N: usize> {
     /// the last returned event borrowed.
     pending_drop: usize,
     /// Stream offset of `buf[0]`.
-    buf_offset: u64,
+    buf_offset: C,
     /// The buffered candidate cannot resolve before it has this many bytes.
     need: usize,
     /// Whether the next candidate starts right where the last frame ended (or
@@ -410,10 +493,10 @@ pub struct StreamDecoder<F, const N: usize> {
     /// skipped bytes or a rejection) is verified against overlapping frames
     /// before it is accepted.
     synced: bool,
-    stats: Stats,
+    stats: Stats<C>,
 }
 
-impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
+impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
     /// A decoder with empty state using `framing`.
     pub const fn new(framing: F) -> Self {
         Self {
@@ -421,10 +504,10 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
             buf: [0; N],
             len: 0,
             pending_drop: 0,
-            buf_offset: 0,
+            buf_offset: C::ZERO,
             need: 0,
             synced: true,
-            stats: Stats::new(),
+            stats: Stats::zero(),
         }
     }
 
@@ -434,7 +517,7 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
     }
 
     /// The counters so far.
-    pub const fn stats(&self) -> Stats {
+    pub const fn stats(&self) -> Stats<C> {
         self.stats
     }
 
@@ -443,16 +526,17 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
         self.len - self.pending_drop
     }
 
-    /// Stream offset of the next byte the decoder will take.
-    pub const fn position(&self) -> u64 {
-        self.stats.bytes
+    /// Stream offset of the next byte the decoder will take (it wraps with
+    /// narrow [`Counter`]s).
+    pub fn position(&self) -> u64 {
+        self.stats.bytes.to_u64()
     }
 
     /// Forget any buffered partial candidate (counting it as skipped) and keep
     /// the counters and stream position.
     pub fn clear(&mut self) {
         self.apply_pending_drop();
-        self.stats.skipped += self.len as u64;
+        self.stats.skipped = self.stats.skipped.plus(self.len);
         if self.len > 0 {
             self.synced = false;
         }
@@ -487,34 +571,54 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
     /// `None` before the next `push`.
     pub fn push(&mut self, byte: u8) -> Option<Event<'_, F::Message<'_>, F::Error>> {
         self.apply_pending_drop();
-        self.stats.bytes += 1;
+        let at = self.stats.bytes;
+        self.stats.bytes = at.plus(1);
         if self.len == 0 {
             if self.framing.find_start(&[byte]) > 0 {
-                self.stats.skipped += 1;
+                self.stats.skipped = self.stats.skipped.plus(1);
                 self.synced = false;
                 return None;
             }
-            self.buf_offset = self.stats.bytes - 1;
+            self.buf_offset = at;
             self.need = 0;
         }
         // `len < N` holds between calls: a full buffer is always resolved.
-        self.buf[self.len] = byte;
+        // (Only a decoder without a buffer, `N == 0`, has no room: it can
+        // decode in place only, so the byte is skipped.)
+        let Some(slot) = self.buf.get_mut(self.len) else {
+            self.stats.skipped = self.stats.skipped.plus(1);
+            self.synced = false;
+            return None;
+        };
+        *slot = byte;
         self.len += 1;
-        let step = self.step_buffered(&mut &[][..]);
-        self.emit(step)
+        // The byte path: resolve the stored bytes only, without the general
+        // step's handling of an input slice.
+        self.next_stored()
     }
 
     /// Collect the events that need no further input (after [`push`](Self::push)
     /// or a rejection): the same as [`decode`](Self::decode) with an empty input.
     pub fn poll(&mut self) -> Option<Event<'_, F::Message<'_>, F::Error>> {
-        self.decode(&mut &[][..])
+        self.apply_pending_drop();
+        if self.len == 0 {
+            return None;
+        }
+        self.next_stored()
+    }
+
+    /// The byte path's one place to resolve and parse (`push` and `poll`
+    /// share it, so a firmware links the message parser once).
+    fn next_stored(&mut self) -> Option<Event<'_, F::Message<'_>, F::Error>> {
+        let step = self.step_stored();
+        self.emit(step)
     }
 
     /// Decode a whole chunk: an iterator of owned events. Every byte of `input`
     /// is taken once the iterator is exhausted (a trailing partial frame is
     /// buffered). Dropping the iterator early leaves the untaken bytes
     /// untaken: [`Feed::remaining`] tells which.
-    pub fn feed<'d, 'i>(&'d mut self, input: &'i [u8]) -> Feed<'d, 'i, F, N> {
+    pub fn feed<'d, 'i>(&'d mut self, input: &'i [u8]) -> Feed<'d, 'i, F, N, C> {
         Feed {
             decoder: self,
             input,
@@ -522,7 +626,7 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
     }
 
     /// End of input as an iterator: the owned events of [`finish`](Self::finish).
-    pub fn flush(&mut self) -> Flush<'_, F, N> {
+    pub fn flush(&mut self) -> Flush<'_, F, N, C> {
         Flush { decoder: self }
     }
 
@@ -534,7 +638,7 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
         if self.len == 0 {
             return None;
         }
-        let error = match self.resolve(&self.buf[..self.len], true) {
+        let error = match self.resolve(self.stored(self.len), true) {
             Verdict::Frame(n) => return self.emit(Step::Buffered(n)),
             Verdict::Need(_) => self.reject_kind(self.framing.truncated(self.len)),
             Verdict::Reject(error) => self.reject_kind(error),
@@ -555,25 +659,46 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
     /// Remove the emitted frame at the front of the buffer.
     fn drop_front(&mut self, n: usize) {
         self.pending_drop = 0;
-        self.buf_offset += n as u64;
+        self.buf_offset = self.buf_offset.plus(n);
         if n >= self.len {
             self.len = 0;
             return;
         }
-        self.buf.copy_within(n..self.len, 0);
+        self.shift_out(n, self.len);
         self.len -= n;
         self.realign_buffer();
     }
 
     /// Make `buf[0]` a candidate start again after its front was removed.
     fn realign_buffer(&mut self) {
-        let skip = self.framing.find_start(&self.buf[..self.len]);
+        let skip = self.framing.find_start(self.stored(self.len));
         if skip > 0 {
             self.synced = false;
-            self.buf.copy_within(skip..self.len, 0);
-            self.len -= skip;
-            self.buf_offset += skip as u64;
-            self.stats.skipped += skip as u64;
+            self.shift_out(skip, self.len);
+            self.len -= skip.min(self.len);
+            self.buf_offset = self.buf_offset.plus(skip);
+            self.stats.skipped = self.stats.skipped.plus(skip);
+        }
+    }
+
+    /// The first `len` bytes of the buffer (`len <= N` always holds; the
+    /// fallback only keeps panic paths out of the binary).
+    #[inline(always)]
+    fn stored(&self, len: usize) -> &[u8] {
+        prefix(&self.buf, len)
+    }
+
+    /// Move `buf[from..len]` to the front of the buffer.
+    #[inline]
+    fn shift_out(&mut self, from: usize, len: usize) {
+        if N <= SMALL_BUFFER {
+            // A small buffer moves whole, a constant count of bytes: cheaper
+            // than a call, and no `memmove` is linked.
+            for i in 0..N {
+                self.buf[i] = self.buf.get(i + from).copied().unwrap_or(0);
+            }
+        } else if from <= len && len <= N {
+            self.buf.copy_within(from..len, 0);
         }
     }
 
@@ -598,7 +723,12 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
         // Verification looks at no more than the buffer could hold, so its
         // answer is the same whether the bytes arrived in one chunk or many.
         let at_end = at_end && c.len() <= N;
-        let c = &c[..c.len().min(N)];
+        let c = prefix_of(c, N);
+        if n > c.len() {
+            // A frame longer than the buffer (found in place) could never
+            // wait for what follows it: accept it, as `wait_or_accept` would.
+            return Verdict::Frame(n);
+        }
         let mut p = 1;
         while p < n {
             p += self.framing.find_start(&c[p..n]);
@@ -645,7 +775,8 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
     /// Is the frame `c[..end]` followed by a plausible header or the end of
     /// input? `Err(n)`: cannot tell before `c` has `n` bytes.
     fn confirmed(&self, c: &[u8], end: usize, at_end: bool) -> Result<bool, usize> {
-        let after = &c[end..];
+        // `end <= c.len()` where this is called; an empty rest otherwise.
+        let after = c.get(end..).unwrap_or(&[]);
         let header_len = F::HEADER_LEN.max(1);
         if after.len() < header_len {
             // At the end of input only the end itself confirms: a header cut
@@ -686,7 +817,7 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
             Step::Rejected(rejected) => return Some(Err(rejected)),
             Step::InPlace { offset, raw } => (offset, raw),
             Step::Buffered(n) => {
-                let offset = self.buf_offset;
+                let offset = self.buf_offset.to_u64();
                 self.need = 0;
                 self.synced = true;
                 if n >= self.len {
@@ -694,12 +825,12 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
                     // from now on (the event still borrows the bytes, which
                     // nothing overwrites before the next call).
                     self.len = 0;
-                    self.buf_offset += n as u64;
+                    self.buf_offset = self.buf_offset.plus(n);
                 } else {
                     // Later bytes stay: the frame is dropped on the next call.
                     self.pending_drop = n;
                 }
-                (offset, &self.buf[..n])
+                (offset, prefix(&self.buf, n))
             }
         };
         Some(parse_counted(&self.framing, &mut self.stats, offset, raw))
@@ -711,34 +842,41 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
     fn step_in_place<'i>(&mut self, input: &mut &'i [u8]) -> Step<'i, F::Error> {
         let data: &'i [u8] = input;
         let pos = self.framing.find_start(data);
-        self.stats.skipped += pos as u64;
+        self.stats.skipped = self.stats.skipped.plus(pos);
         if pos > 0 {
             self.synced = false;
         }
         if pos >= data.len() {
-            self.stats.bytes += data.len() as u64;
+            self.stats.bytes = self.stats.bytes.plus(data.len());
             *input = &[];
             return Step::Done;
         }
-        let offset = self.stats.bytes + pos as u64;
-        let candidate = &data[pos..];
+        let offset = self.stats.bytes.plus(pos);
+        let candidate = data.get(pos..).unwrap_or(&[]);
         let error = match self.resolve(candidate, false) {
-            Verdict::Frame(n) => {
-                self.stats.bytes += (pos + n) as u64;
-                *input = &data[pos + n..];
-                self.synced = true;
-                return Step::InPlace {
-                    offset,
-                    raw: &candidate[..n],
-                };
-            }
+            // (`n <= candidate.len()` for a frame: `split_at_checked` only
+            // keeps a panic path out of the binary.)
+            Verdict::Frame(n) => match candidate.split_at_checked(n) {
+                Some((raw, rest)) => {
+                    self.stats.bytes = self.stats.bytes.plus(pos + n);
+                    *input = rest;
+                    self.synced = true;
+                    return Step::InPlace {
+                        offset: offset.to_u64(),
+                        raw,
+                    };
+                }
+                None => self.reject_kind(self.framing.truncated(candidate.len())),
+            },
             Verdict::Need(n) if candidate.len() < N => {
                 // Only a frame that straddles the end of the chunk is copied.
-                self.buf[..candidate.len()].copy_from_slice(candidate);
+                if let Some(front) = self.buf.get_mut(..candidate.len()) {
+                    front.copy_from_slice(candidate);
+                }
                 self.len = candidate.len();
                 self.need = n.min(N);
                 self.buf_offset = offset;
-                self.stats.bytes += data.len() as u64;
+                self.stats.bytes = self.stats.bytes.plus(data.len());
                 *input = &[];
                 return Step::Done;
             }
@@ -749,10 +887,49 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
             Verdict::Superseded(n) => self.supersede_kind(n),
         };
         self.synced = false;
-        self.stats.skipped += 1;
-        self.stats.bytes += (pos + 1) as u64;
-        *input = &data[pos + 1..];
-        Step::Rejected(Rejected { offset, error })
+        self.stats.skipped = self.stats.skipped.plus(1);
+        self.stats.bytes = self.stats.bytes.plus(pos + 1);
+        *input = data.get(pos + 1..).unwrap_or(&[]);
+        Step::Rejected(Rejected {
+            offset: offset.to_u64(),
+            error,
+        })
+    }
+
+    /// A candidate is buffered and no input is offered (`push`, `poll`):
+    /// resolve the stored bytes. This is [`step_buffered`](Self::step_buffered)
+    /// with an empty input, without its input handling.
+    fn step_stored<'i>(&mut self) -> Step<'i, F::Error> {
+        let mut stored = self.len;
+        // A start that could not be confirmed (a sync word cut in two) may
+        // turn out to be none now: drop it silently, as `step_buffered` does.
+        let skip = self.framing.find_start(self.stored(stored));
+        if skip > 0 {
+            self.shift_out(skip, stored);
+            self.buf_offset = self.buf_offset.plus(skip);
+            self.stats.skipped = self.stats.skipped.plus(skip);
+            self.synced = false;
+            self.need = 0;
+            stored -= skip.min(stored);
+            self.len = stored;
+            if stored == 0 {
+                return Step::Done;
+            }
+        }
+        if stored < self.need {
+            return Step::Done;
+        }
+        let error = match self.resolve(self.stored(stored), false) {
+            Verdict::Frame(n) => return Step::Buffered(n),
+            Verdict::Need(n) if stored < N => {
+                self.need = n.min(N);
+                return Step::Done;
+            }
+            Verdict::Need(_) => self.reject_kind(self.framing.truncated(stored)),
+            Verdict::Reject(error) => self.reject_kind(error),
+            Verdict::Superseded(n) => self.supersede_kind(n),
+        };
+        self.reject_buffered(error)
     }
 
     /// A candidate is buffered: add input bytes to it until it resolves.
@@ -765,16 +942,18 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
         let take = data.len().min(N - stored);
         // Append input tentatively: bytes the candidate does not use are given
         // back to the caller.
-        self.buf[stored..stored + take].copy_from_slice(&data[..take]);
+        if let Some(tail) = self.buf.get_mut(stored..stored + take) {
+            tail.copy_from_slice(&data[..take]);
+        }
         let total = stored + take;
         // A start that could not be confirmed at the end of the last chunk (a
         // sync word cut in two) may turn out to be none: drop it silently, as
         // `find_start` would have if the bytes had come in one chunk.
-        let skip = self.framing.find_start(&self.buf[..total]).min(stored);
+        let skip = self.framing.find_start(self.stored(total)).min(stored);
         if skip > 0 {
-            self.buf.copy_within(skip..total, 0);
-            self.buf_offset += skip as u64;
-            self.stats.skipped += skip as u64;
+            self.shift_out(skip, total);
+            self.buf_offset = self.buf_offset.plus(skip);
+            self.stats.skipped = self.stats.skipped.plus(skip);
             self.synced = false;
             self.need = 0;
             stored -= skip;
@@ -787,14 +966,14 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
         if total < self.need {
             // Cannot resolve yet: keep everything without asking the framing.
             self.len = total;
-            self.stats.bytes += take as u64;
+            self.stats.bytes = self.stats.bytes.plus(take);
             *input = &data[take..];
             return Step::Done;
         }
-        match self.resolve(&self.buf[..total], false) {
+        match self.resolve(self.stored(total), false) {
             Verdict::Frame(n) => {
-                let used = n.saturating_sub(stored);
-                self.stats.bytes += used as u64;
+                let used = n.saturating_sub(stored).min(take);
+                self.stats.bytes = self.stats.bytes.plus(used);
                 *input = &data[used..];
                 // Stored bytes past the frame stay buffered (possible only
                 // after a rejection shifted the buffer).
@@ -802,7 +981,7 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
                 Step::Buffered(n)
             }
             Verdict::Need(n) if total < N => {
-                self.stats.bytes += take as u64;
+                self.stats.bytes = self.stats.bytes.plus(take);
                 *input = &data[take..];
                 self.len = total;
                 self.need = n.min(N);
@@ -826,13 +1005,13 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
     /// Reject the buffered candidate: drop its first byte only and realign on
     /// the next candidate start among the stored bytes.
     fn reject_buffered<'i>(&mut self, error: F::Error) -> Step<'i, F::Error> {
-        let offset = self.buf_offset;
+        let offset = self.buf_offset.to_u64();
         self.need = 0;
         self.synced = false;
-        self.stats.skipped += 1;
-        self.buf.copy_within(1..self.len, 0);
-        self.len -= 1;
-        self.buf_offset += 1;
+        self.stats.skipped = self.stats.skipped.plus(1);
+        self.shift_out(1, self.len);
+        self.len = self.len.saturating_sub(1);
+        self.buf_offset = self.buf_offset.plus(1);
         self.realign_buffer();
         Step::Rejected(Rejected { offset, error })
     }
@@ -840,29 +1019,42 @@ impl<F: FrameRules, const N: usize> StreamDecoder<F, N> {
     /// Count a rejection by its kind and hand the error back.
     fn reject_kind(&mut self, error: F::Error) -> F::Error {
         if self.framing.is_checksum_error(&error) {
-            self.stats.checksum_errors += 1;
+            self.stats.checksum_errors = self.stats.checksum_errors.plus(1);
         } else {
-            self.stats.rejected += 1;
+            self.stats.rejected = self.stats.rejected.plus(1);
         }
         error
     }
 
     /// Count a superseded candidate of `n` bytes and make its error.
     fn supersede_kind(&mut self, n: usize) -> F::Error {
-        self.stats.superseded += 1;
+        self.stats.superseded = self.stats.superseded.plus(1);
         self.framing.superseded(n)
     }
 }
 
+/// The first `len` bytes of `bytes`, or all of them.
 #[inline(always)]
-fn parse_counted<'a, F: FrameRules>(
+fn prefix_of(bytes: &[u8], len: usize) -> &[u8] {
+    bytes.get(..len).unwrap_or(bytes)
+}
+
+/// The first `len` bytes of `buf`, or all of it (`len <= N` always holds
+/// where this is called; the fallback keeps panic paths out of the binary).
+#[inline(always)]
+fn prefix<const N: usize>(buf: &[u8; N], len: usize) -> &[u8] {
+    buf.get(..len).unwrap_or(buf)
+}
+
+#[inline(always)]
+fn parse_counted<'a, F: FrameRules, C: Counter>(
     framing: &F,
-    stats: &mut Stats,
+    stats: &mut Stats<C>,
     offset: u64,
     raw: &'a [u8],
 ) -> Event<'a, F::Message<'a>, F::Error> {
-    stats.frames += 1;
-    stats.frame_bytes += raw.len() as u64;
+    stats.frames = stats.frames.plus(1);
+    stats.frame_bytes = stats.frame_bytes.plus(raw.len());
     match framing.parse(raw) {
         Ok(message) => Ok(Frame {
             offset,
@@ -870,7 +1062,7 @@ fn parse_counted<'a, F: FrameRules>(
             message,
         }),
         Err(error) => {
-            stats.malformed += 1;
+            stats.malformed = stats.malformed.plus(1);
             Err(Rejected { offset, error })
         }
     }
@@ -891,19 +1083,19 @@ pub type OwnedEvent<F> =
 
 /// Iterator over the events in one chunk; see [`StreamDecoder::feed`].
 #[derive(Debug)]
-pub struct Feed<'d, 'i, F, const N: usize> {
-    decoder: &'d mut StreamDecoder<F, N>,
+pub struct Feed<'d, 'i, F, const N: usize, C = u64> {
+    decoder: &'d mut StreamDecoder<F, N, C>,
     input: &'i [u8],
 }
 
-impl<F, const N: usize> Feed<'_, '_, F, N> {
+impl<F, const N: usize, C> Feed<'_, '_, F, N, C> {
     /// The bytes of the chunk not taken yet.
     pub const fn remaining(&self) -> &[u8] {
         self.input
     }
 }
 
-impl<F: FrameRules, const N: usize> Iterator for Feed<'_, '_, F, N> {
+impl<F: FrameRules, const N: usize, C: Counter> Iterator for Feed<'_, '_, F, N, C> {
     type Item = OwnedEvent<F>;
 
     fn next(&mut self) -> Option<Self::Item> {
@@ -913,11 +1105,11 @@ impl<F: FrameRules, const N: usize> Iterator for Feed<'_, '_, F, N> {
 
 /// Iterator over the events at the end of input; see [`StreamDecoder::flush`].
 #[derive(Debug)]
-pub struct Flush<'d, F, const N: usize> {
-    decoder: &'d mut StreamDecoder<F, N>,
+pub struct Flush<'d, F, const N: usize, C = u64> {
+    decoder: &'d mut StreamDecoder<F, N, C>,
 }
 
-impl<F: FrameRules, const N: usize> Iterator for Flush<'_, F, N> {
+impl<F: FrameRules, const N: usize, C: Counter> Iterator for Flush<'_, F, N, C> {
     type Item = OwnedEvent<F>;
 
     fn next(&mut self) -> Option<Self::Item> {
@@ -938,6 +1130,9 @@ enum Step<'a, E> {
     /// A frame of this many bytes at the front of the internal buffer.
     Buffered(usize),
 }
+
+/// Buffers up to this size are moved whole (see `shift_out`).
+const SMALL_BUFFER: usize = 32;
 
 enum Verdict<E> {
     Need(usize),

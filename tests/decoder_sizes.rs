@@ -53,6 +53,16 @@ fn the_embedded_guide_gives_every_decoder_size() {
             "telemetrix::LenientHostDecoder",
             size_of::<telemetrix::LenientHostDecoder>(),
         ),
+        (
+            "StreamDecoder<omnitiles::Framing<Device>, omnitiles::DEVICE_BUFFER, u32>",
+            size_of::<
+                robowire::StreamDecoder<
+                    omnitiles::Framing<omnitiles::Device>,
+                    { omnitiles::DEVICE_BUFFER },
+                    u32,
+                >,
+            >(),
+        ),
     ];
     for (name, size) in sizes {
         let prefix = format!("| `{name}` |");

@@ -429,6 +429,13 @@ impl<S: Side> stream::FrameRules for Framing<S> {
         // On a clean stream the next frame starts right here: skip the scan.
         match bytes.first() {
             Some(&START) => 0,
+            // A few bytes (a small decoder buffer): a plain scan. Where the
+            // length is known to be small, as in a command decoder's 14-byte
+            // buffer, memchr's word-at-a-time search is not linked at all.
+            _ if bytes.len() <= 16 => bytes
+                .iter()
+                .position(|&b| b == START)
+                .unwrap_or(bytes.len()),
             _ => memchr::memchr(START, bytes).unwrap_or(bytes.len()),
         }
     }

@@ -174,8 +174,12 @@ use crate::stream::StreamDecoder;
 /// starting inside it and the next header after that (the engine's resync
 /// verification).
 pub const HOST_BUFFER: usize = 128;
-/// Buffer size of a [`DeviceDecoder`].
-pub const DEVICE_BUFFER: usize = 128;
+/// Buffer size of a [`DeviceDecoder`]: sized from the framing. A command
+/// candidate is at most 6 bytes, so 14 hold a candidate, a command starting
+/// inside it and the header after that, all the engine's resync verification
+/// reads (128 before 0.2).
+pub const DEVICE_BUFFER: usize =
+    2 * wire::MAX_COMMAND_LEN + <Framing<Device> as crate::stream::FrameRules>::HEADER_LEN;
 /// Buffer size of a [`BothDecoder`].
 pub const BOTH_BUFFER: usize = 128;
 

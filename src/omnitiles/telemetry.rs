@@ -229,7 +229,11 @@ fn zero_padded<const L: usize>(frame: &[u8]) -> [u8; L] {
 }
 
 fn put_u16(out: &mut [u8], at: usize, value: u16) {
-    out[at..at + 2].copy_from_slice(&value.to_le_bytes());
+    // The offsets come from the layout and fit its frame; `get_mut` only
+    // keeps a panic path out of firmware builds.
+    if let Some(dst) = out.get_mut(at..at + 2) {
+        dst.copy_from_slice(&value.to_le_bytes());
+    }
 }
 
 /// Write a reading, refusing `Some(0xFFFF)`: it would come back as `None`.
@@ -351,10 +355,14 @@ impl Encode for Telemetry {
                 what: "a field group is present exactly when the layout carries it",
             });
         }
-        let out = &mut out[..len];
+        let Some(out) = out.get_mut(..len) else {
+            return Err(EncodeError::BufferTooSmall {
+                needed: len,
+                available: out.len(),
+            });
+        };
         let at = offsets(self.layout);
-        out[0] = START;
-        out[1] = id::TELEMETRY;
+        put_u16(out, 0, u16::from_le_bytes([START, id::TELEMETRY]));
         put_reading(out, 2, self.m1_pos, "m1_pos")?;
         put_reading(out, 4, self.m2_pos, "m2_pos")?;
         if let (Some(o), Some(uwb)) = (at.uwb, self.uwb) {
@@ -367,7 +375,9 @@ impl Encode for Telemetry {
         }
         if let (Some(o), Some(imu)) = (at.imu, self.imu) {
             for (i, v) in imu.to_array().into_iter().enumerate() {
-                out[o + 4 * i..o + 4 * i + 4].copy_from_slice(&v.to_bits().to_le_bytes());
+                if let Some(dst) = out.get_mut(o + 4 * i..o + 4 * i + 4) {
+                    dst.copy_from_slice(&v.to_bits().to_le_bytes());
+                }
             }
         }
         if let (Some(o), Some(m1), Some(m2)) = (at.adcs, self.m1_adcs, self.m2_adcs) {
@@ -378,7 +388,9 @@ impl Encode for Telemetry {
                 put_u16(out, o + M1_ADCS_LEN + 2 * i, v);
             }
         }
-        out[len - 1] = checksum(&out[1..len - 1]);
+        if let [_, body @ .., sum] = out {
+            *sum = checksum(body);
+        }
         Ok(len)
     }
 }

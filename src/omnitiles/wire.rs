@@ -48,23 +48,35 @@ pub mod id {
 /// ```
 #[inline]
 pub const fn payload_len(id: u8) -> Option<usize> {
-    // One table load instead of a chain of comparisons on the hot path.
-    match PAYLOAD_LEN[id as usize] {
+    // One table load instead of a chain of comparisons on the hot path. The
+    // table spans the command ids only (0x30..=0x71), 66 bytes of flash.
+    let at = id.wrapping_sub(FIRST_COMMAND) as usize;
+    if at >= PAYLOAD_LEN.len() {
+        return None;
+    }
+    match PAYLOAD_LEN[at] {
         NOT_A_COMMAND => None,
         n => Some(n as usize),
     }
 }
 
+/// The lowest and highest command ids: [`PAYLOAD_LEN`] covers them.
+const FIRST_COMMAND: u8 = id::M1_EXTEND;
+const LAST_COMMAND: u8 = id::BASE_BRAKE;
+
 /// [`PAYLOAD_LEN`] entry of an id that is no command.
 const NOT_A_COMMAND: u8 = u8::MAX;
 
-/// Payload length by id, [`NOT_A_COMMAND`] for ids that are no command.
-const PAYLOAD_LEN: [u8; 256] = {
-    let mut table = [NOT_A_COMMAND; 256];
+/// Payload length by id from [`FIRST_COMMAND`], [`NOT_A_COMMAND`] for ids
+/// that are no command.
+const PAYLOAD_LEN: [u8; (LAST_COMMAND - FIRST_COMMAND) as usize + 1] = {
+    let mut table = [NOT_A_COMMAND; (LAST_COMMAND - FIRST_COMMAND) as usize + 1];
     let mut id = 0;
     while id < 256 {
         if let Some(n) = command_payload_len(id as u8) {
-            table[id] = n as u8;
+            // Every command id lies in the table's range (checked at compile
+            // time: an id outside it fails this index).
+            table[id - FIRST_COMMAND as usize] = n as u8;
         }
         id += 1;
     }
@@ -130,7 +142,14 @@ fn fold_lanes(acc: u64) -> u8 {
 
 #[cfg(test)]
 mod tests {
-    use super::{checksum, sum8};
+    use super::{checksum, command_payload_len, payload_len, sum8};
+
+    #[test]
+    fn the_payload_table_is_the_command_table() {
+        for id in 0..=u8::MAX {
+            assert_eq!(payload_len(id), command_payload_len(id), "id {id:#04x}");
+        }
+    }
 
     #[test]
     fn sum8_equals_the_bytewise_sum() {

@@ -36,15 +36,19 @@ use cortex_m::peripheral::NVIC;
 use cortex_m_rt::{entry, interrupt};
 use critical_section::Mutex;
 use embedded_io::Write;
-use robowire::Encode;
-use robowire::omnitiles::{self, Command, DeviceDecoder, Layout, Telemetry, units};
+use robowire::omnitiles::{Command, DEVICE_BUFFER, Device, Framing, Layout, Telemetry, units};
+use robowire::{Encode, StreamDecoder};
 
 use vectors::interrupt;
 
+/// A firmware-sized command decoder: the 14-byte buffer its framing needs
+/// (`DEVICE_BUFFER`) and `u32` counters, 64 bytes of RAM in all.
+type CommandDecoder = StreamDecoder<Framing<Device>, DEVICE_BUFFER, u32>;
+
 /// The command decoder, fed by the USART2 interrupt one byte at a time.
 /// `const fn` construction: no initialisation code, no `Option`.
-static DECODER: Mutex<RefCell<DeviceDecoder>> =
-    Mutex::new(RefCell::new(omnitiles::device_decoder()));
+static DECODER: Mutex<RefCell<CommandDecoder>> =
+    Mutex::new(RefCell::new(StreamDecoder::new(Framing::new())));
 
 // The tile's state, shared with handlers that are not shown (the PWM timer
 // reads the duties and targets, the ADC's DMA interrupt writes the positions).
@@ -84,7 +88,11 @@ fn USART2() {
     }
     let byte = usart.read_data();
     critical_section::with(|cs| {
-        let mut decoder = DECODER.borrow_ref_mut(cs);
+        // Nothing else borrows the decoder inside a critical section;
+        // `try_borrow_mut` says so without linking a panic path.
+        let Ok(mut decoder) = DECODER.borrow(cs).try_borrow_mut() else {
+            return;
+        };
         if let Some(Ok(frame)) = decoder.push(byte) {
             on_command(frame.message);
         }
@@ -133,8 +141,9 @@ fn main() -> ! {
 
 /// Link-quality counters, for a debugger or a status command.
 #[allow(dead_code)]
-fn link_stats() -> robowire::Stats {
-    critical_section::with(|cs| DECODER.borrow_ref(cs).stats())
+fn link_stats() -> robowire::Stats<u32> {
+    critical_section::with(|cs| DECODER.borrow(cs).try_borrow().map(|d| d.stats()))
+        .unwrap_or_default()
 }
 
 fn obey(command: Command) {
