@@ -69,9 +69,7 @@ KNOWN = {
 
 # Binaries known to link panic machinery still (the reason). Any other binary
 # that links it fails the report.
-PANICS_KNOWN = {
-    "pixy2_requests": "indexing in the Pixy2 framing's find_start and check",
-}
+PANICS_KNOWN: dict = {}
 
 PANIC_MARKS = (
     b"panicking",

@@ -246,7 +246,8 @@ impl<S: Side> stream::FrameRules for Framing<S> {
             .and_then(|rest| memchr::memchr(0xc1, rest))
         {
             let at = from + i;
-            if is_first(bytes[at - 1]) {
+            // `at >= 1`: the search starts at 1. `get` keeps the panic path out.
+            if bytes.get(at - 1).is_some_and(|&b| is_first(b)) {
                 return at - 1;
             }
             from = at + 1;
@@ -293,7 +294,11 @@ impl<S: Side> stream::FrameRules for Framing<S> {
         };
         match form {
             Form::Checksum => {
-                let expected = u16::from_le_bytes([c[4], c[5]]);
+                // The checksum form's header is 6 bytes, all present here.
+                let (Some(&lo), Some(&hi)) = (c.get(4), c.get(5)) else {
+                    return Check::Need(6);
+                };
+                let expected = u16::from_le_bytes([lo, hi]);
                 let found = checksum(payload);
                 if expected != found {
                     return Check::Reject(Error::Checksum { expected, found });
