@@ -283,3 +283,51 @@ fn a_ble53_frame_after_noise_is_not_cut_short() {
         [(2, 53)]
     );
 }
+
+/// A 53-byte frame whose bytes after the 45th are zeros and whose first 45
+/// bytes happen to sum right (found by the `omnitiles_structured` fuzz
+/// target): with `spi45` beside `ble53`, the zeros look like an SPI buffer's
+/// padding. The 53-byte frame is confirmed by the end of input or the next
+/// header, so it wins; a real SPI buffer's 53-byte reading is not confirmed.
+#[test]
+fn a_53_byte_frame_with_a_zero_tail_is_not_taken_for_padding() {
+    use robowire::omnitiles::Imu;
+    let telemetry = Telemetry {
+        layout: Layout::Ble53,
+        m1_pos: None,
+        m2_pos: None,
+        uwb: Some([None, None, Some(16896), Some(8192)]),
+        tof: Some(Some(256)),
+        imu: Some(Imu {
+            ax: 8.0,
+            ay: f32::from_bits(0x0101_0101),
+            az: 0.0,
+            gx: 0.0,
+            gy: 0.0,
+            gz: 0.0,
+        }),
+        m1_adcs: Some([0; 4]),
+        m2_adcs: Some([0, 0]),
+    };
+    let frame = FrameBuf::<53>::encode(&telemetry).unwrap();
+    assert_eq!(frame[45..53], [0; 8]);
+    assert_eq!(
+        sum(&frame[1..44]),
+        frame[44],
+        "the 45-byte prefix sums right"
+    );
+    let layouts = Layouts::only(Layout::Spi45).with(Layout::Ble53);
+    let framing = Framing::<Host>::new().with_layouts(layouts);
+    let mut twice = frame.to_vec();
+    twice.extend_from_slice(&frame);
+    for bytes in [&frame[..], &twice[..]] {
+        for chunk in CHUNKS {
+            let got = spi_frames(framing, bytes, *chunk);
+            assert!(!got.is_empty());
+            for (offset, len, message) in got {
+                assert_eq!((offset % 53, len), (0, 53), "chunk {chunk}");
+                assert_eq!(message, Message::Telemetry(telemetry));
+            }
+        }
+    }
+}

@@ -237,6 +237,8 @@ impl<S: Side> Framing<S> {
         // Lengths that validated without confirmation, and the first of them.
         let mut unconfirmed = 0;
         let mut only = 0;
+        // A 45-byte frame confirmed only by the zero padding after it.
+        let mut padded = 0;
         // Running sum over bytes 1.. so each length costs only its new bytes.
         let mut sum: u8 = 0;
         let mut summed = 1;
@@ -266,9 +268,23 @@ impl<S: Side> Framing<S> {
                 continue;
             }
             if layout == longest {
-                return Check::Frame(len);
+                if padded == 0 {
+                    return Check::Frame(len);
+                }
+                // A 45-byte frame padded with zeros, and a longer frame over
+                // the same bytes: the longer one wins only if a header or the
+                // end of input confirms it (its tail of zeros looked like
+                // padding); otherwise the zeros are the SPI buffer's padding.
+                return match self.confirms(layout, &c[len..], at_end) {
+                    Some(true) => Check::Frame(len),
+                    Some(false) => Check::Frame(padded),
+                    None => Check::Need(len + 2),
+                };
             }
             match self.confirms(layout, &c[len..], at_end) {
+                Some(true) if layout == Layout::Spi45 && c.get(len) == Some(&0) => {
+                    padded = len;
+                }
                 Some(true) => return Check::Frame(len),
                 Some(false) => {
                     if unconfirmed == 0 {
@@ -278,6 +294,9 @@ impl<S: Side> Framing<S> {
                 }
                 None => return Check::Need(len + 2),
             }
+        }
+        if padded != 0 {
+            return Check::Frame(padded);
         }
         match unconfirmed {
             // The only enabled length that validates here.
