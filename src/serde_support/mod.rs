@@ -151,7 +151,7 @@ mod tests {
     /// its shortest digits read back through `f64`, but for one. Minutes in
     /// a release build.
     #[test]
-    #[ignore]
+    #[ignore = "exhaustive over every f32: minutes in a release build; run with --ignored"]
     fn every_f32_but_one_reads_back_through_f64() {
         use core::fmt::Write as _;
         let mut text = alloc::string::String::new();
