@@ -201,6 +201,97 @@ fn push<S: Side>(framing: Framing<S>, input: &[u8]) -> usize {
     frames
 }
 
+/// The baseline: the classic hand-written byte-at-a-time parser a tile's
+/// firmware uses for commands. It waits for the start byte, takes the id,
+/// reads the payload its id implies blindly, checks the sum and dispatches;
+/// after a bad frame it waits for the next start byte, with no rescan of the
+/// bytes it consumed (so it can lose a frame after garbage, which robowire
+/// does not).
+fn naive_commands(input: &[u8]) -> usize {
+    enum State {
+        Start,
+        Id,
+        Payload,
+        Sum,
+    }
+    let mut state = State::Start;
+    let (mut id, mut want, mut have, mut sum) = (0u8, 0usize, 0usize, 0u8);
+    let mut payload = [0u8; 3];
+    let mut frames = 0;
+    for &byte in input {
+        match state {
+            State::Start => {
+                if byte == 0xA5 {
+                    state = State::Id;
+                }
+            }
+            State::Id => {
+                id = byte;
+                sum = byte;
+                have = 0;
+                want = match byte {
+                    0x32 | 0x42 | 0x50 | 0x71 => 0,
+                    0x30 | 0x31 | 0x33 | 0x40 | 0x41 | 0x43 => 1,
+                    0x70 => 3,
+                    _ => {
+                        state = State::Start;
+                        continue;
+                    }
+                };
+                state = if want == 0 {
+                    State::Sum
+                } else {
+                    State::Payload
+                };
+            }
+            State::Payload => {
+                payload[have] = byte;
+                sum = sum.wrapping_add(byte);
+                have += 1;
+                if have == want {
+                    state = State::Sum;
+                }
+            }
+            State::Sum => {
+                state = State::Start;
+                if byte != sum {
+                    continue;
+                }
+                let motor = if id & 0xF0 == 0x30 {
+                    Motor::M1
+                } else {
+                    Motor::M2
+                };
+                let command = match id {
+                    0x30 | 0x40 => Command::Extend {
+                        motor,
+                        speed: payload[0],
+                    },
+                    0x31 | 0x41 => Command::Retract {
+                        motor,
+                        speed: payload[0],
+                    },
+                    0x32 | 0x42 => Command::Brake { motor },
+                    0x33 | 0x43 => Command::SetPosition {
+                        motor,
+                        position: payload[0],
+                    },
+                    0x50 => Command::Ping,
+                    0x70 => Command::BaseVelocity {
+                        vx: payload[0] as i8,
+                        vy: payload[1] as i8,
+                        omega: payload[2] as i8,
+                    },
+                    _ => Command::BaseBrake,
+                };
+                black_box(&command);
+                frames += 1;
+            }
+        }
+    }
+    frames
+}
+
 fn encode_all<M: Encode>(messages: &[M], out: &mut [u8]) -> usize {
     let mut at = 0;
     for message in messages {
@@ -236,6 +327,7 @@ fn omnitiles(c: &mut Criterion) {
         push(Framing::<Device>::new(), &commands),
         command_messages.len()
     );
+    assert_eq!(naive_commands(&commands), command_messages.len());
     assert_eq!(decode(ble53_only, &noisy, whole), noisy_intact);
     let mut out = vec![0u8; MIB];
     assert_eq!(encode_all(&ble_messages, &mut out), ble.len());
@@ -270,6 +362,10 @@ fn omnitiles(c: &mut Criterion) {
     group.throughput(bytes(commands.len()));
     group.bench_function("decode/commands", |b| {
         b.iter(|| decode(Framing::<Device>::new(), black_box(&commands), whole))
+    });
+
+    group.bench_function("baseline/naive_commands", |b| {
+        b.iter(|| naive_commands(black_box(&commands)))
     });
 
     group.throughput(bytes(noisy.len()));

@@ -13,7 +13,7 @@ use super::error::Error;
 use super::layout::{Layout, Layouts};
 use super::message::Message;
 use super::telemetry::Telemetry;
-use super::wire::{checksum, id, payload_len, sum8, MAX_COMMAND_LEN, START};
+use super::wire::{checksum, id, payload_len, sum8, MAX_COMMAND_LEN, MAX_FRAME_LEN, START};
 
 mod sealed {
     pub trait Sealed {}
@@ -233,12 +233,61 @@ impl<S: Side> Framing<S> {
     /// that frame; with two or more unconfirmed ones it is rejected.
     #[inline(never)]
     fn check_layouts(&self, longest: Layout, c: &[u8], at_end: bool) -> Check<Error> {
+        // In the middle of a buffer every length and the two bytes after it
+        // are there: test all the sums at once, without a branch per length,
+        // and look only at the lengths that validate (usually one).
+        if let Some(window) = c.first_chunk::<{ MAX_FRAME_LEN + 2 }>() {
+            return self.check_window(longest, window, at_end);
+        }
+        self.check_lengths(longest, c, at_end)
+    }
+
+    /// [`check_layouts`](Self::check_layouts) on a candidate long enough for
+    /// every length and what follows it: the same answers, with the sums of
+    /// all five lengths computed over constant ranges and tested together.
+    #[inline(always)]
+    fn check_window(
+        &self,
+        longest: Layout,
+        c: &[u8; MAX_FRAME_LEN + 2],
+        at_end: bool,
+    ) -> Check<Error> {
+        // Running sums over bytes 1.. up to each layout's checksum byte
+        // (7, 15, 17, 45 and 53-byte frames).
+        let s7 = sum8(&c[1..6]);
+        let s15 = s7.wrapping_add(sum8(&c[6..14]));
+        let s17 = s15.wrapping_add(sum8(&c[14..16]));
+        let s45 = s17.wrapping_add(sum8(&c[16..44]));
+        let s53 = s45.wrapping_add(sum8(&c[44..52]));
+        let sums = [s7, s15, s17, s45, s53];
+        let mut valid = u8::from(s7 == c[6])
+            | u8::from(s15 == c[14]) << 1
+            | u8::from(s17 == c[16]) << 2
+            | u8::from(s45 == c[44]) << 3
+            | u8::from(s53 == c[52]) << 4;
+        valid &= self.layouts.bits();
+        let mut tally = Tally::default();
+        while valid != 0 {
+            let layout = Layout::ALL[(valid.trailing_zeros() as usize).min(4)];
+            valid &= valid - 1;
+            if let Some(answer) = tally.validated(self, layout, longest, c, at_end) {
+                return answer;
+            }
+        }
+        // Every enabled length was tried; if none validated, the longest
+        // failed last.
+        let end = longest.frame_len() - 1;
+        tally.finish(Error::Checksum {
+            expected: sums[(longest as usize).min(4)],
+            found: c[end.min(MAX_FRAME_LEN - 1)],
+        })
+    }
+
+    /// [`check_layouts`](Self::check_layouts) one length at a time, for a
+    /// candidate that may end before the longest length.
+    fn check_lengths(&self, longest: Layout, c: &[u8], at_end: bool) -> Check<Error> {
         let mut error = Error::Unconfirmed;
-        // Lengths that validated without confirmation, and the first of them.
-        let mut unconfirmed = 0;
-        let mut only = 0;
-        // A 45-byte frame confirmed only by the zero padding after it.
-        let mut padded = 0;
+        let mut tally = Tally::default();
         // Running sum over bytes 1.. so each length costs only its new bytes.
         let mut sum: u8 = 0;
         let mut summed = 1;
@@ -252,7 +301,7 @@ impl<S: Side> Framing<S> {
                     return Check::Need(len);
                 }
                 // The input ended: longer lengths cannot validate.
-                if unconfirmed == 0 {
+                if tally.unconfirmed == 0 {
                     error = Error::Truncated { len: c.len() };
                 }
                 break;
@@ -267,40 +316,77 @@ impl<S: Side> Framing<S> {
                 };
                 continue;
             }
-            if layout == longest {
-                if padded == 0 {
-                    return Check::Frame(len);
-                }
-                // A 45-byte frame padded with zeros, and a longer frame over
-                // the same bytes: the longer one wins only if a header or the
-                // end of input confirms it (its tail of zeros looked like
-                // padding); otherwise the zeros are the SPI buffer's padding.
-                return match self.confirms(layout, &c[len..], at_end) {
-                    Some(true) => Check::Frame(len),
-                    Some(false) => Check::Frame(padded),
-                    None => Check::Need(len + 2),
-                };
-            }
-            match self.confirms(layout, &c[len..], at_end) {
-                Some(true) if layout == Layout::Spi45 && c.get(len) == Some(&0) => {
-                    padded = len;
-                }
-                Some(true) => return Check::Frame(len),
-                Some(false) => {
-                    if unconfirmed == 0 {
-                        only = len;
-                    }
-                    unconfirmed += 1;
-                }
-                None => return Check::Need(len + 2),
+            if let Some(answer) = tally.validated(self, layout, longest, c, at_end) {
+                return answer;
             }
         }
-        if padded != 0 {
-            return Check::Frame(padded);
+        tally.finish(error)
+    }
+}
+
+/// What the lengths tried so far at one candidate say, under the length
+/// policy of [`Framing::check_layouts`].
+#[derive(Default)]
+struct Tally {
+    /// Lengths that validated without confirmation.
+    unconfirmed: u8,
+    /// The first of them.
+    only: usize,
+    /// A 45-byte frame confirmed only by the zero padding after it.
+    padded: usize,
+}
+
+impl Tally {
+    /// `layout`'s length validated at `c`: the answer, or `None` to try the
+    /// next length.
+    #[inline(always)]
+    fn validated<S: Side>(
+        &mut self,
+        framing: &Framing<S>,
+        layout: Layout,
+        longest: Layout,
+        c: &[u8],
+        at_end: bool,
+    ) -> Option<Check<Error>> {
+        let len = layout.frame_len();
+        let rest = c.get(len..).unwrap_or(&[]);
+        if layout == longest {
+            if self.padded == 0 {
+                return Some(Check::Frame(len));
+            }
+            // A 45-byte frame padded with zeros, and a longer frame over the
+            // same bytes: the longer one wins only if a header or the end of
+            // input confirms it (its tail of zeros looked like padding);
+            // otherwise the zeros are the SPI buffer's padding.
+            return Some(match framing.confirms(layout, rest, at_end) {
+                Some(true) => Check::Frame(len),
+                Some(false) => Check::Frame(self.padded),
+                None => Check::Need(len + 2),
+            });
         }
-        match unconfirmed {
+        match framing.confirms(layout, rest, at_end) {
+            Some(true) if layout == Layout::Spi45 && rest.first() == Some(&0) => self.padded = len,
+            Some(true) => return Some(Check::Frame(len)),
+            Some(false) => {
+                if self.unconfirmed == 0 {
+                    self.only = len;
+                }
+                self.unconfirmed += 1;
+            }
+            None => return Some(Check::Need(len + 2)),
+        }
+        None
+    }
+
+    /// Every enabled length was tried (or the input ended); `error` is what
+    /// to say if none validated.
+    fn finish(self, error: Error) -> Check<Error> {
+        if self.padded != 0 {
+            return Check::Frame(self.padded);
+        }
+        match self.unconfirmed {
             // The only enabled length that validates here.
-            1 => Check::Frame(only),
+            1 => Check::Frame(self.only),
             0 => Check::Reject(error),
             // Two or more, and nothing after them says which.
             _ => Check::Reject(Error::Unconfirmed),
@@ -490,5 +576,72 @@ impl<S: Side> stream::FrameRules for Framing<S> {
 
     fn to_owned(message: S::Message) -> S::Message {
         message
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Candidates that often validate at one or more lengths: frames of
+    /// random layouts followed by another frame, zero padding or noise, some
+    /// with the later frame's sums arranged to collide.
+    fn candidates() -> impl Iterator<Item = [u8; MAX_FRAME_LEN + 2]> {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        (0..if cfg!(miri) { 300 } else { 60_000 }).map(move |_| {
+            let mut c = [0u8; MAX_FRAME_LEN + 2];
+            for b in &mut c {
+                *b = next() as u8;
+            }
+            // A frame (or two overlapping ones) whose sums validate.
+            for _ in 0..1 + next() % 2 {
+                let layout = Layout::ALL[(next() % 5) as usize];
+                let len = layout.frame_len();
+                c[0] = START;
+                c[1] = id::TELEMETRY;
+                if next() % 4 == 0 {
+                    c[len..].fill(0);
+                }
+                c[len - 1] = sum8(&c[1..len - 1]);
+                if next() % 3 == 0 && len + 2 <= c.len() {
+                    c[len] = START;
+                    c[len + 1] = [id::TELEMETRY, 0x30, 0x00][(next() % 3) as usize];
+                }
+            }
+            c
+        })
+    }
+
+    #[test]
+    fn the_window_check_answers_as_the_length_by_length_check() {
+        let mut tried = 0;
+        for (n, c) in candidates().enumerate() {
+            let bits = (n % 32) as u8;
+            if bits.count_ones() < 2 {
+                continue;
+            }
+            tried += 1;
+            let layouts = Layout::ALL
+                .into_iter()
+                .enumerate()
+                .filter(|(i, _)| bits & 1 << i != 0)
+                .fold(Layouts::NONE, |set, (_, l)| set.with(l));
+            let framing = Framing::<Both>::new().with_layouts(layouts);
+            let longest = layouts.longest().unwrap();
+            for at_end in [false, true] {
+                assert_eq!(
+                    framing.check_window(longest, &c, at_end),
+                    framing.check_lengths(longest, &c, at_end),
+                    "{layouts:?} at_end {at_end} {c:02x?}"
+                );
+            }
+        }
+        assert!(tried > 100);
     }
 }

@@ -190,6 +190,11 @@ impl Layouts {
         self.0.count_ones() as usize
     }
 
+    /// The set's bits: bit `i` is [`Layout::ALL`]`[i]`.
+    pub(crate) const fn bits(self) -> u8 {
+        self.0
+    }
+
     /// Whether the set is empty.
     pub const fn is_empty(self) -> bool {
         self.0 == 0
