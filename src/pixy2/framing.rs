@@ -33,6 +33,13 @@
 //!   still found.
 //! * Every rejection drops only the candidate's first byte (the engine's
 //!   resync by one).
+//! * Speed: a sync word right at the start and a whole `af c1` header that
+//!   the side accepts are answered inline (only the payload sum is left,
+//!   and a candidate short of its payload is told its whole length from the
+//!   length byte, so the engine checks it once more, when it is complete);
+//!   everything else takes the byte-by-byte path described here. Where the
+//!   target has no vector registers (a microcontroller) only the latter is
+//!   compiled, to save flash. Figures in `docs/performance.md`.
 //!
 //! Errors stay apart: [`Error`] is what the codec found wrong with bytes;
 //! [`DeviceError`](super::DeviceError) (general, busy, invalid request, type
