@@ -269,3 +269,104 @@ fn decoder_sizes_and_buffers() {
     let _ = pixy2::device_decoder();
     let _ = pixy2::both_decoder();
 }
+
+/// The checksum summed sixteen lanes at a time is the plain wrapping sum,
+/// whatever the length and alignment (every remainder of 16 and of 8).
+#[test]
+fn checksum_is_the_plain_wrapping_sum() {
+    let mut data = [0u8; 600];
+    let mut x = 0x9e37_79b9_7f4a_7c15u64;
+    for b in &mut data {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        *b = x as u8;
+    }
+    let plain = |p: &[u8]| p.iter().fold(0u16, |s, &b| s.wrapping_add(u16::from(b)));
+    for start in 0..17 {
+        for len in 0..=(data.len() - start) {
+            let p = &data[start..start + len];
+            assert_eq!(pixy2::checksum(p), plain(p), "from {start}, {len} bytes");
+        }
+    }
+    // All 0xff: the lanes wrap long before a real payload's length.
+    let ones = [0xffu8; 600];
+    for len in 0..=ones.len() {
+        assert_eq!(pixy2::checksum(&ones[..len]), plain(&ones[..len]), "{len}");
+    }
+}
+
+/// A blocks view iterates the same blocks whichever way it is consumed
+/// (`next`, `next_back`, `fold`, as `sum` and `for` use them), for every
+/// count of blocks.
+#[test]
+fn block_iteration_agrees_every_way() {
+    use pixy2::{Block, BlocksBuf};
+    for n in 0..=pixy2::MAX_BLOCKS {
+        let mut buf = BlocksBuf::new();
+        for i in 0..n {
+            let mut bytes = [0u8; Block::SIZE];
+            for (j, b) in bytes.iter_mut().enumerate() {
+                *b = (i * 31 + j * 7) as u8;
+            }
+            buf.push(Block::from_bytes(&bytes)).unwrap();
+        }
+        let view = buf.view();
+        let by_index: Vec<Block> = (0..n).map(|i| view.get(i).unwrap()).collect();
+        let mut by_next = Vec::new();
+        let mut iter = view.iter();
+        assert_eq!(iter.len(), n);
+        // A `for` loop takes them one `next` at a time.
+        for block in iter.by_ref() {
+            by_next.push(block);
+        }
+        let mut by_back: Vec<Block> = view.iter().rev().collect();
+        by_back.reverse();
+        let by_fold = view.iter().fold(Vec::new(), |mut v, b| {
+            v.push(b);
+            v
+        });
+        assert_eq!(by_next, by_index, "{n} blocks, next");
+        assert_eq!(by_back, by_index, "{n} blocks, next_back");
+        assert_eq!(by_fold, by_index, "{n} blocks, fold");
+        let xs: u64 = view.iter().map(|b| u64::from(b.x)).sum();
+        assert_eq!(xs, by_index.iter().map(|b| u64::from(b.x)).sum::<u64>());
+        // Mixed ends meet in the middle.
+        let mut iter = view.iter();
+        let (front, back) = (iter.next(), iter.next_back());
+        assert_eq!(front, by_index.first().copied());
+        if n > 1 {
+            assert_eq!(back, by_index.last().copied());
+            assert_eq!(iter.len(), n - 2);
+        }
+    }
+}
+
+/// Every blocks length byte: whole blocks (at most 18) decode, any other
+/// length is refused from the header.
+#[test]
+fn every_blocks_length_byte() {
+    for len in 0..=255u8 {
+        let mut frame = vec![0xaf, 0xc1, 0x21, len, 0, 0];
+        frame.extend(std::iter::repeat(0).take(usize::from(len)));
+        let got = Response::try_from(&frame[..]);
+        if len % 14 == 0 {
+            assert!(
+                matches!(got, Ok(Response::Blocks(b)) if b.len() == usize::from(len) / 14),
+                "{len}: {got:?}"
+            );
+        } else {
+            assert_eq!(
+                got,
+                Err(Error::BadLength {
+                    packet_type: 0x21,
+                    len
+                }),
+                "{len}"
+            );
+        }
+    }
+    assert_eq!(pixy2::Blocks::new(&[0; 252]).map(|b| b.len()), Some(18));
+    assert_eq!(pixy2::Blocks::new(&[0; 266]), None);
+    assert_eq!(pixy2::Blocks::new(&[0; 13]), None);
+}

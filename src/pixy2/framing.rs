@@ -33,6 +33,13 @@
 //!   still found.
 //! * Every rejection drops only the candidate's first byte (the engine's
 //!   resync by one).
+//! * Speed: a sync word right at the start and a whole `af c1` header that
+//!   the side accepts are answered inline (only the payload sum is left,
+//!   and a candidate short of its payload is told its whole length from the
+//!   length byte, so the engine checks it once more, when it is complete);
+//!   everything else takes the byte-by-byte path described here. Where the
+//!   target has no vector registers (a microcontroller) only the latter is
+//!   compiled, to save flash. Figures in `docs/performance.md`.
 //!
 //! Errors stay apart: [`Error`] is what the codec found wrong with bytes;
 //! [`DeviceError`](super::DeviceError) (general, busy, invalid request, type
@@ -84,7 +91,7 @@ use super::envelope::{Envelope, Message, MessageBuf};
 use super::error::Error;
 use super::request::{check_request_header, request_len, Request};
 use super::response::{check_response_header, is_response_type, Response, ResponseBuf};
-use super::wire::{checksum, Form, DEVICE_MAX_PAYLOAD, MAX_FRAME_LEN};
+use super::wire::{checksum, Form, DEVICE_MAX_PAYLOAD, MAX_FRAME_LEN, VECTOR};
 
 mod sealed {
     pub trait Sealed {}
@@ -125,10 +132,12 @@ impl Side for Host {
         is_response_type(packet_type)
     }
 
+    #[inline]
     fn check_header(packet_type: u8, len: u8) -> Result<(), Error> {
         check_response_header(packet_type, len)
     }
 
+    #[inline(always)]
     fn parse(form: Form, packet_type: u8, payload: &[u8]) -> Result<Self::Message<'_>, Error> {
         Response::from_payload(packet_type, payload).map(|body| Envelope::new(form, body))
     }
@@ -147,6 +156,7 @@ impl Side for Device {
         request_len(packet_type).is_some()
     }
 
+    #[inline]
     fn check_header(packet_type: u8, len: u8) -> Result<(), Error> {
         check_request_header(packet_type, len)
     }
@@ -169,6 +179,7 @@ impl Side for Both {
         Host::accepts_type(packet_type) || Device::accepts_type(packet_type)
     }
 
+    #[inline]
     fn check_header(packet_type: u8, len: u8) -> Result<(), Error> {
         if is_response_type(packet_type) {
             check_response_header(packet_type, len)
@@ -227,19 +238,26 @@ impl<S: Side> Framing<S> {
     }
 }
 
-impl<S: Side> stream::FrameRules for Framing<S> {
-    type Error = Error;
-    type Message<'a> = S::Message<'a>;
-    type Owned = S::Owned;
+/// Whether `find_start` and `check` answer the common case (a sync word
+/// right at the start, a whole checksum-form header) inline before their
+/// general paths. Where the target has vector registers (SSE2, NEON: the
+/// hosts that decode at memory speed) this is most of the decoder's time
+/// saved; on a microcontroller the copies inlined at each of the engine's
+/// call sites would cost about 340 bytes of flash for a link that is far
+/// slower than either path, so there the general paths are all there is.
+const FAST_PATHS: bool = VECTOR;
 
-    /// Sync word, type and length: enough to reject an impossible header.
-    const HEADER_LEN: usize = 4;
+impl<S: Side> Framing<S> {
+    /// Whether `byte` is the first byte of an accepted sync word.
+    #[inline(always)]
+    fn is_first(&self, byte: u8) -> bool {
+        byte == 0xaf || (byte == 0xae && !self.checksum_only)
+    }
 
-    /// Both sync words by sliding search: find each `0xc1` with `memchr` and
-    /// look one byte back. A first sync byte at the very end may be a start
-    /// whose `0xc1` has not arrived yet.
-    fn find_start(&self, bytes: &[u8]) -> usize {
-        let is_first = |b: u8| b == 0xaf || (b == 0xae && !self.checksum_only);
+    /// [`find_start`](stream::FrameRules::find_start) past its first two
+    /// bytes: `memchr` for each `0xc1`, one byte back.
+    #[inline(never)]
+    fn search_start(&self, bytes: &[u8]) -> usize {
         let mut from = 1;
         while let Some(i) = bytes
             .get(from..)
@@ -247,18 +265,22 @@ impl<S: Side> stream::FrameRules for Framing<S> {
         {
             let at = from + i;
             // `at >= 1`: the search starts at 1. `get` keeps the panic path out.
-            if bytes.get(at - 1).is_some_and(|&b| is_first(b)) {
+            if bytes.get(at - 1).is_some_and(|&b| self.is_first(b)) {
                 return at - 1;
             }
             from = at + 1;
         }
         match bytes.last() {
-            Some(&b) if is_first(b) => bytes.len() - 1,
+            Some(&b) if self.is_first(b) => bytes.len() - 1,
             _ => bytes.len(),
         }
     }
 
-    fn check(&self, c: &[u8], _at_end: bool) -> Check<Error> {
+    /// Every candidate the fast path of `check` does not settle: a header
+    /// not yet whole, the no-checksum form, or a header to reject (which
+    /// error, decided byte by byte).
+    #[inline(never)]
+    fn check_slow(&self, c: &[u8]) -> Check<Error> {
         let Some(&start) = c.first() else {
             return Check::Need(1);
         };
@@ -314,6 +336,60 @@ impl<S: Side> stream::FrameRules for Framing<S> {
         }
         Check::Frame(total)
     }
+}
+
+impl<S: Side> stream::FrameRules for Framing<S> {
+    type Error = Error;
+    type Message<'a> = S::Message<'a>;
+    type Owned = S::Owned;
+
+    /// Sync word, type and length: enough to reject an impossible header.
+    const HEADER_LEN: usize = 4;
+
+    /// Both sync words by sliding search: find each `0xc1` with `memchr` and
+    /// look one byte back. A first sync byte at the very end may be a start
+    /// whose `0xc1` has not arrived yet.
+    #[inline(always)]
+    fn find_start(&self, bytes: &[u8]) -> usize {
+        // The next frame usually starts right here (right after the last
+        // one, or at the front of the buffer holding a candidate). Only
+        // where the fast paths pay for their size (see `FAST_PATHS`).
+        if FAST_PATHS {
+            if let Some(&[first, 0xc1]) = bytes.first_chunk::<2>() {
+                if self.is_first(first) {
+                    return 0;
+                }
+            }
+        }
+        self.search_start(bytes)
+    }
+
+    #[inline(always)]
+    fn check(&self, c: &[u8], _at_end: bool) -> Check<Error> {
+        // The common case first: a whole checksum-form header whose type and
+        // length the side accepts. Only the payload's sum is left to check,
+        // and a candidate still short of its payload is told how many bytes
+        // it needs from the header alone (the engine then waits for them
+        // without asking again).
+        if let (true, Some(&[0xaf, 0xc1, packet_type, len, lo, hi])) =
+            (FAST_PATHS, c.first_chunk::<6>())
+        {
+            if S::check_header(packet_type, len).is_ok() {
+                let total = 6 + usize::from(len);
+                let Some(payload) = c.get(6..total) else {
+                    return Check::Need(total);
+                };
+                let expected = u16::from_le_bytes([lo, hi]);
+                let found = checksum(payload);
+                return if expected == found {
+                    Check::Frame(total)
+                } else {
+                    Check::Reject(Error::Checksum { expected, found })
+                };
+            }
+        }
+        self.check_slow(c)
+    }
 
     fn truncated(&self, len: usize) -> Error {
         Error::Truncated { len }
@@ -327,10 +403,9 @@ impl<S: Side> stream::FrameRules for Framing<S> {
         matches!(error, Error::Checksum { .. })
     }
 
+    #[inline(always)]
     fn parse<'a>(&self, frame: &'a [u8]) -> Result<S::Message<'a>, Error> {
-        let (Some(&start), Some(&packet_type), Some(&len)) =
-            (frame.first(), frame.get(2), frame.get(3))
-        else {
+        let Some(&[start, _, packet_type, len]) = frame.first_chunk::<4>() else {
             return Err(Error::Truncated { len: frame.len() });
         };
         let form = Form::from_start_byte(start).ok_or(Error::Sync { found: start })?;

@@ -6,8 +6,8 @@ use core::fmt;
 
 use crate::encode::EncodeError;
 
-use super::blocks::{Blocks, BlocksBuf};
-use super::error::{DeviceError, Error, Malformed};
+use super::blocks::{blocks_len_ok, Blocks, BlocksBuf};
+use super::error::{DeviceError, Error};
 use super::features::{Features, FeaturesBuf, Section};
 use super::wire::{packet_type as ty, Body, Form};
 
@@ -207,12 +207,21 @@ pub enum ResponseBuf {
 /// Header check for a response: a known type with a length it can have
 /// (spec §7.4 item 4). Line features can have any length; their sections are
 /// checked once the payload is there.
+#[inline]
 pub(crate) fn check_response_header(packet_type: u8, len: u8) -> Result<(), Error> {
+    // Blocks first: by far the commonest response (the switch below is a
+    // jump table the blocks test would otherwise wait for).
+    if packet_type == ty::BLOCKS {
+        return if blocks_len_ok(len) {
+            Ok(())
+        } else {
+            Err(Error::BadLength { packet_type, len })
+        };
+    }
     let ok = match packet_type {
         ty::RESULT | ty::RESOLUTION => len == 4,
         ty::ERROR => len == 1,
         ty::VERSION => usize::from(len) == Version::SIZE,
-        ty::BLOCKS => Blocks::new(&[0u8; 255][..usize::from(len)]).is_some(),
         ty::FEATURES => true,
         _ => return Err(Error::UnknownType { packet_type }),
     };
@@ -294,38 +303,44 @@ impl<'a> Response<'a> {
 
     /// Parse a response from its type and payload (blocks and features are
     /// borrowed from `payload`).
+    #[inline(always)]
     pub(crate) fn from_payload(packet_type: u8, payload: &'a [u8]) -> Result<Self, Error> {
-        let len = u8::try_from(payload.len()).map_err(|_| Error::BadLength {
+        // Each arm checks the length its type needs, the same test as
+        // `check_response_header` (which the decoder has already passed):
+        // nothing is checked twice on the way from the frame to the message.
+        let bad_length = || Error::BadLength {
             packet_type,
-            len: u8::MAX,
-        })?;
-        check_response_header(packet_type, len)?;
-        let bad_length = Error::BadLength { packet_type, len };
+            len: u8::try_from(payload.len()).unwrap_or(u8::MAX),
+        };
         Ok(match packet_type {
+            ty::BLOCKS => Self::Blocks(Blocks::new(payload).ok_or_else(bad_length)?),
             ty::RESULT => Self::Result(i32::from_le_bytes(
-                payload.try_into().map_err(|_| bad_length)?,
+                payload.try_into().map_err(|_| bad_length())?,
             )),
             ty::ERROR => match *payload {
                 [code] => Self::Error(DeviceError::from_code(code as i8)),
-                _ => return Err(bad_length),
+                _ => return Err(bad_length()),
             },
             ty::RESOLUTION => match *payload {
                 [w0, w1, h0, h1] => Self::Resolution(Resolution {
                     width: u16::from_le_bytes([w0, w1]),
                     height: u16::from_le_bytes([h0, h1]),
                 }),
-                _ => return Err(bad_length),
+                _ => return Err(bad_length()),
             },
             ty::VERSION => Self::Version(Version::from_bytes(
-                payload.try_into().map_err(|_| bad_length)?,
+                payload.try_into().map_err(|_| bad_length())?,
             )),
-            ty::BLOCKS => Self::Blocks(Blocks::new(payload).ok_or(Error::Malformed {
-                packet_type,
-                what: Malformed::BlocksLength { len: payload.len() },
-            })?),
-            ty::FEATURES => Self::Features(
-                Features::new(payload).map_err(|what| Error::Malformed { packet_type, what })?,
-            ),
+            ty::FEATURES => {
+                // Any length up to 255 is a plausible features header.
+                if payload.len() > usize::from(u8::MAX) {
+                    return Err(bad_length());
+                }
+                Self::Features(
+                    Features::new(payload)
+                        .map_err(|what| Error::Malformed { packet_type, what })?,
+                )
+            }
             _ => return Err(Error::UnknownType { packet_type }),
         })
     }
