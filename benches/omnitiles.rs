@@ -9,8 +9,8 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use robowire::omnitiles::{
-    Both, Command, Device, Framing, Host, Imu, Layout, Layouts, Motor, Side, Telemetry,
-    BOTH_BUFFER, NO_READING,
+    Both, Command, Device, Framing, Host, HostViewDecoder, Imu, Layout, Layouts, Motor, Side,
+    Telemetry, TelemetryViews, BOTH_BUFFER, NO_READING,
 };
 use robowire::Encode;
 use robowire::StreamDecoder;
@@ -176,6 +176,32 @@ fn decode<S: Side>(framing: Framing<S>, input: &[u8], chunk: usize) -> usize {
     frames
 }
 
+/// The same with telemetry read in place: each frame's view, and the three
+/// readings a position loop reads from it (both positions and the ToF range),
+/// go through `black_box`.
+fn decode_views(framing: TelemetryViews, input: &[u8], chunk: usize) -> usize {
+    let mut decoder = HostViewDecoder::new(framing);
+    let mut frames = 0;
+    let mut consume = |view: &robowire::omnitiles::TelemetryView<'_>| {
+        black_box(view);
+        black_box((view.m1_pos(), view.m2_pos(), view.tof()));
+        frames += 1;
+    };
+    for mut piece in input.chunks(chunk) {
+        while let Some(event) = decoder.decode(&mut piece) {
+            if let Ok(frame) = event {
+                consume(&frame.message);
+            }
+        }
+    }
+    while let Some(event) = decoder.finish() {
+        if let Ok(frame) = event {
+            consume(&frame.message);
+        }
+    }
+    frames
+}
+
 /// The same through the single-byte entry point.
 fn push<S: Side>(framing: Framing<S>, input: &[u8]) -> usize {
     let mut decoder = StreamDecoder::<_, BOTH_BUFFER>::new(framing);
@@ -316,6 +342,10 @@ fn omnitiles(c: &mut Criterion) {
     assert_eq!(decode(ble53_only, &ble, whole), ble_messages.len());
     assert_eq!(decode(ble53_only, &ble, 244), ble_messages.len());
     assert_eq!(
+        decode_views(ble53_only.views(), &ble, whole),
+        ble_messages.len()
+    );
+    assert_eq!(
         decode(Framing::<Both>::new(), &mixed, whole),
         mixed_messages.len()
     );
@@ -352,6 +382,9 @@ fn omnitiles(c: &mut Criterion) {
     });
     group.bench_function("decode/ble53_chunk244", |b| {
         b.iter(|| decode(ble53_only, black_box(&ble), 244))
+    });
+    group.bench_function("decode/ble53_view", |b| {
+        b.iter(|| decode_views(ble53_only.views(), black_box(&ble), whole))
     });
 
     group.throughput(bytes(mixed.len()));

@@ -37,7 +37,7 @@
 //! | concept | `omnitiles` | `pixy2` | `telemetrix` |
 //! |---|---|---|---|
 //! | message host → device | `Command` | `Request` | `Command<'a>` |
-//! | message device → host | `Telemetry` | `Response<'a>` | `Report<'a>` |
+//! | message device → host | `Telemetry` (read in place: `TelemetryView<'a>`, from a `HostViewDecoder`) | `Response<'a>` | `Report<'a>` |
 //! | either direction | `Message` | `Message<'a>` | `Message<'a>` |
 //! | owned form (what `feed` yields) | the messages themselves | `Request`, `ResponseBuf`, `MessageBuf` | `CommandBuf`, `ReportBuf`, `MessageBuf` |
 //! | frame form wrapper | — | `Envelope<M> { form, body }` | — |

@@ -150,6 +150,7 @@ mod message;
 mod schema;
 mod telemetry;
 pub mod units;
+mod view;
 mod whole;
 mod wire;
 
@@ -164,6 +165,7 @@ pub use framing::{Both, Device, Framing, Host, Side, TelemetrySide};
 pub use layout::{Layout, Layouts};
 pub use message::Message;
 pub use telemetry::{Imu, Telemetry, NO_READING};
+pub use view::{TelemetryView, TelemetryViews};
 pub use wire::{checksum, id, payload_len, MAX_FRAME_LEN, START};
 
 #[cfg(doc)]
@@ -193,6 +195,15 @@ pub type BothDecoder = StreamDecoder<Framing<Both>, BOTH_BUFFER>;
 /// A host decoder accepting telemetry in the four documented layouts.
 pub const fn host_decoder() -> HostDecoder {
     StreamDecoder::new(Framing::new())
+}
+
+/// Decodes telemetry as [`TelemetryView`]s, read in place (the host's side,
+/// where frames come faster than a struct per frame is worth building).
+pub type HostViewDecoder = StreamDecoder<TelemetryViews, HOST_BUFFER>;
+
+/// A host decoder yielding [`TelemetryView`]s of the four documented layouts.
+pub const fn host_view_decoder() -> HostViewDecoder {
+    StreamDecoder::new(TelemetryViews::new())
 }
 
 /// A device decoder: commands.

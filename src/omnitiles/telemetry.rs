@@ -120,14 +120,14 @@ pub struct Telemetry {
 }
 
 /// Where each field group sits in a layout (offsets from the start byte).
-struct Offsets {
-    uwb: Option<usize>,
-    tof: Option<usize>,
-    imu: Option<usize>,
-    adcs: Option<usize>,
+pub(super) struct Offsets {
+    pub(super) uwb: Option<usize>,
+    pub(super) tof: Option<usize>,
+    pub(super) imu: Option<usize>,
+    pub(super) adcs: Option<usize>,
 }
 
-const fn offsets(layout: Layout) -> Offsets {
+pub(super) const fn offsets(layout: Layout) -> Offsets {
     match layout {
         Layout::Pos7 => Offsets {
             uwb: None,
@@ -163,7 +163,7 @@ const fn offsets(layout: Layout) -> Offsets {
 }
 
 /// Bytes the M1 ADC channels take; M2's follow them.
-const M1_ADCS_LEN: usize = 8;
+pub(super) const M1_ADCS_LEN: usize = 8;
 
 #[inline(always)]
 fn u16_at<const L: usize>(frame: &[u8; L], at: usize) -> u16 {
