@@ -2,6 +2,7 @@
 
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
+use super::fast;
 use super::module::{module_report_len_ok, ModuleReport};
 use super::quirk::report_quirk;
 use super::sensor::{SensorReading, SensorType};
@@ -712,7 +713,22 @@ impl Encode for Report<'_> {
 /// unknown ids accepted as [`Report::Unknown`] when `lenient`. This is the one
 /// definition of a valid report: the decoder accepts exactly what it accepts,
 /// and the encoder emits nothing it rejects.
+#[inline(always)]
 pub(crate) fn parse_report_with(
+    dialect: Dialect,
+    lenient: bool,
+    frame: &[u8],
+) -> Result<Report<'_>, Error> {
+    match fast::parse(dialect, frame) {
+        Some(report) => Ok(report),
+        None => parse_report_full(dialect, lenient, frame),
+    }
+}
+
+/// [`parse_report_with`] for every report, each field checked in turn (out
+/// of line: the table takes the common ones).
+#[inline(never)]
+pub(super) fn parse_report_full(
     dialect: Dialect,
     lenient: bool,
     frame: &[u8],
