@@ -12,7 +12,9 @@ use super::dialect::Dialect;
 use super::error::Error;
 use super::fast;
 use super::module::{ModuleNew, ModuleType};
-use super::report::{parse_report_with, report_header_len, report_known, report_len_ok, Report};
+use super::report::{
+    parse_report_full, parse_report_with, report_header_len, report_known, report_len_ok, Report,
+};
 use super::wire::{command_id, report_id, MAX_COMMAND_LEN};
 
 mod sealed {
@@ -48,9 +50,14 @@ impl Side for Host {
     const COMMANDS: bool = false;
     const REPORTS: bool = true;
 
+    /// [`parse_report_with`], with the fast path inlined into the decoder's
+    /// loop (other callers get it out of line).
     #[inline(always)]
     fn parse(dialect: Dialect, lenient: bool, frame: &[u8]) -> Result<Report<'_>, Error> {
-        parse_report_with(dialect, lenient, frame)
+        match fast::parse(dialect, frame) {
+            Some(report) => Ok(report),
+            None => parse_report_full(dialect, lenient, frame),
+        }
     }
 
     fn to_owned(message: Report<'_>) -> ReportBuf {

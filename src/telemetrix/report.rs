@@ -712,8 +712,10 @@ impl Encode for Report<'_> {
 /// Parse one complete report frame (`LEN` byte first) for `dialect`, with
 /// unknown ids accepted as [`Report::Unknown`] when `lenient`. This is the one
 /// definition of a valid report: the decoder accepts exactly what it accepts,
-/// and the encoder emits nothing it rejects.
-#[inline(always)]
+/// and the encoder emits nothing it rejects. The common streamed reports take
+/// a fast path (`fast::parse`), which gives exactly what
+/// [`parse_report_full`] gives (the fast module's tests check it).
+#[inline]
 pub(crate) fn parse_report_with(
     dialect: Dialect,
     lenient: bool,
@@ -726,7 +728,7 @@ pub(crate) fn parse_report_with(
 }
 
 /// [`parse_report_with`] for every report, each field checked in turn (out
-/// of line: the table takes the common ones).
+/// of line: the fast path takes the common ones).
 #[inline(never)]
 pub(super) fn parse_report_full(
     dialect: Dialect,
