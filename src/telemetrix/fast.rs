@@ -3,7 +3,8 @@
 //! * `check`: a table by report id gives the bytes of a frame (`LEN`, id,
 //!   payload) as one range per byte, so accepting a clean frame is two table
 //!   loads and eight byte compares (one vector compare), without a branch on
-//!   the id.
+//!   the id; one of those reports cut by the end of a chunk waits for its
+//!   whole frame without the full check.
 //! * `parse`: the reports a Pico streams (digital, analog, sonar, encoder)
 //!   and PONG are read straight from the frame's bytes, each field checked
 //!   with one compare, instead of through the field reader.
@@ -108,9 +109,8 @@ const fn table(dialect: Dialect) -> [Entry; 64] {
 }
 
 /// A dialect's table, compact: the id's low six bits index `index`, which
-/// gives the slot in `entries` (slot 0 is the unused entry). 80 bytes per
-/// used id rather than 16 per possible one: 960 bytes for the three
-/// dialects.
+/// gives the slot in `entries` (slot 0 is the unused entry): 320 bytes per
+/// dialect instead of 1,024 for a flat table, 960 for the three.
 struct Compact {
     index: [u8; 64],
     entries: [Entry; SLOTS],
@@ -160,20 +160,38 @@ pub(crate) fn window(bytes: &[u8]) -> Option<[u8; WINDOW]> {
     Some((u64::from(head) | u64::from(tail) << shift).to_le_bytes())
 }
 
+/// The table entry for report id `rid`.
+#[inline(always)]
+fn lookup(dialect: Dialect, rid: u8) -> &'static Entry {
+    let table = &TABLES[dialect as usize];
+    let slot = usize::from(table.index[usize::from(rid & 63)]);
+    &table.entries[slot % SLOTS]
+}
+
 /// The length of the frame at the start of `w` (a [`window`] of a candidate
 /// with `available` bytes) if the table accepts it, without branching on the
 /// id.
 #[inline(always)]
 pub(crate) fn accept(dialect: Dialect, w: &[u8; WINDOW], available: usize) -> Option<usize> {
-    let table = &TABLES[dialect as usize];
-    let slot = usize::from(table.index[usize::from(w[1] & 63)]);
-    let entry = &table.entries[slot % SLOTS];
+    let entry = lookup(dialect, w[1]);
     let mut bad = 0u8;
     for ((&byte, &lo), &span) in w.iter().zip(&entry.lo).zip(&entry.span) {
         bad |= u8::from(byte.wrapping_sub(lo) > span);
     }
     let total = usize::from(w[0]) + 1;
     (bad == 0 && total <= available).then_some(total)
+}
+
+/// The length `candidate` must reach before it can be decided, if it starts
+/// with the `LEN` and id of a table entry and is shorter than that frame
+/// (the end of a chunk): the full check waits for the whole frame of these
+/// reports whatever the bytes so far hold.
+#[inline(always)]
+pub(crate) fn need(dialect: Dialect, candidate: &[u8]) -> Option<usize> {
+    let (&[len, rid], _) = candidate.split_first_chunk::<2>()?;
+    let entry = lookup(dialect, rid);
+    let total = usize::from(len) + 1;
+    (entry.lo[0] == len && entry.lo[1] == rid && candidate.len() < total).then_some(total)
 }
 
 /// The report in `frame` (one whole frame) if it is one of the common

@@ -215,7 +215,18 @@ impl<S: Side> Framing<S> {
                 return Check::Frame(n);
             }
         }
-        self.check_report_full(c, lenient)
+        self.check_report_slow(c, lenient)
+    }
+
+    /// The common reports cut by the end of a chunk wait for their whole
+    /// frame at once; anything else takes the full check (out of line, so
+    /// the clean path stays small).
+    #[inline(never)]
+    fn check_report_slow(&self, c: &[u8], lenient: bool) -> Check<Error> {
+        match fast::need(self.dialect, c) {
+            Some(n) => Check::Need(n),
+            None => self.check_report_full(c, lenient),
+        }
     }
 
     /// Every report, each check in turn (out of line: the table takes the
