@@ -50,8 +50,8 @@ impl Side for Host {
     const COMMANDS: bool = false;
     const REPORTS: bool = true;
 
-    /// [`parse_report_with`], with the fast path inlined into the decoder's
-    /// loop (other callers get it out of line).
+    // `parse_report_with`, with the fast path inlined into the decoder's
+    // loop (other callers get it out of line).
     #[inline(always)]
     fn parse(dialect: Dialect, lenient: bool, frame: &[u8]) -> Result<Report<'_>, Error> {
         match fast::parse(dialect, frame) {
