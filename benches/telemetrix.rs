@@ -1,8 +1,21 @@
-//! Telemetrix4RpiPico decoding throughput: a realistic ~1 MiB mix of digital,
-//! analog, sonar and encoder reports, against the ceiling of summing every
-//! byte of the same buffer.
+//! Telemetrix4RpiPico decoding throughput. One group, `telemetrix`, in bytes
+//! per second over the same seeded buffer (about 1 MiB of mirte 1.3 reports:
+//! digital, analog, sonar and encoder, 4.6 bytes a frame on average):
+//!
+//! * `ceiling/sum_bytes`: add up every byte, the floor no parser can beat;
+//! * `decode/reports`: stream-decode the whole buffer in one call, typed,
+//!   every message through `black_box`, summing the report ids;
+//! * `decode/reports_chunk64`: the same, fed in 64-byte chunks;
+//! * `baseline/naive_reports`: the reader a user writes by hand (the mirte
+//!   client's): take the length byte, take that many bytes blindly, dispatch
+//!   on the report id, with no validation and no resync.
+//!
+//! Every input is generated from a fixed seed; each benchmark checks once,
+//! outside the timing loop, that it finds exactly the generated frames.
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
+use std::hint::black_box;
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use robowire::telemetrix::{Framing, Host, HostDecoder, Report, Sonar};
 use robowire::Encode;
 
@@ -22,12 +35,27 @@ impl Rng {
     }
 }
 
+/// What a decode found: frames, and the sum of their report ids.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+struct Found {
+    frames: u64,
+    ids: u64,
+}
+
+impl Found {
+    fn add(&mut self, id: u8) {
+        self.frames += 1;
+        self.ids += u64::from(id);
+    }
+}
+
 /// About 1 MiB of mirte 1.3 reports: 40 % digital, 30 % analog, 15 % sonar,
-/// 15 % encoder.
-fn reports() -> Vec<u8> {
+/// 15 % encoder. Returns the bytes and what a decoder must find in them.
+fn reports() -> (Vec<u8>, Found) {
     let mut rng = Rng(0x5eed_7e1e_3e7a_0001);
     let mut out = Vec::with_capacity(1 << 20);
     let mut frame = [0u8; 16];
+    let mut found = Found::default();
     while out.len() < 1 << 20 {
         let report: Report<'_> = match rng.below(20) {
             0..=7 => Report::Digital {
@@ -50,41 +78,152 @@ fn reports() -> Vec<u8> {
         };
         let n = report.encode(&mut frame).expect("valid report");
         out.extend_from_slice(&frame[..n]);
+        found.add(report.id());
     }
-    out
+    (out, found)
 }
 
-fn decode_all(input: &[u8], chunk: usize) -> u64 {
+/// Decode `input` fed in `chunk`-byte pieces, typed.
+fn decode_all(input: &[u8], chunk: usize) -> Found {
     let mut decoder = HostDecoder::new(Framing::<Host>::new());
-    let mut frames = 0u64;
+    let mut found = Found::default();
     for piece in input.chunks(chunk) {
         let mut rest = piece;
         while let Some(event) = decoder.decode(&mut rest) {
             if let Ok(frame) = event {
-                frames += u64::from(frame.message.id());
+                found.add(black_box(&frame.message).id());
             }
         }
     }
-    while decoder.finish().is_some() {}
-    frames
+    while let Some(event) = decoder.finish() {
+        if let Ok(frame) = event {
+            found.add(black_box(&frame.message).id());
+        }
+    }
+    found
+}
+
+/// The fields a hand-written reader pulls out of the reports it knows (read
+/// through `black_box`).
+#[allow(dead_code)]
+#[derive(Debug, Clone, Copy)]
+enum NaiveReport {
+    Digital { pin: u8, value: u8 },
+    Analog { pin: u8, value: u16 },
+    Sonar { trig: u8, echo: u8, cm: u16 },
+    Encoder { pin: u8, steps: i8 },
+    Other { id: u8 },
+}
+
+impl NaiveReport {
+    fn id(&self) -> u8 {
+        match *self {
+            NaiveReport::Digital { .. } => 2,
+            NaiveReport::Analog { .. } => 3,
+            NaiveReport::Sonar { .. } => 11,
+            NaiveReport::Encoder { .. } => 14,
+            NaiveReport::Other { id } => id,
+        }
+    }
+}
+
+/// The classic hand-written reader, byte at a time (what the mirte client's
+/// reader thread does): a length byte, then that many bytes taken blindly,
+/// then a dispatch on the report id. No validation, no resync: a lost or
+/// extra byte desynchronises it for good.
+struct NaiveReader {
+    body: [u8; 256],
+    need: usize,
+    have: usize,
+}
+
+impl NaiveReader {
+    fn new() -> Self {
+        Self {
+            body: [0; 256],
+            need: 0,
+            have: 0,
+        }
+    }
+
+    fn push(&mut self, byte: u8) -> Option<NaiveReport> {
+        if self.need == 0 {
+            self.need = usize::from(byte);
+            self.have = 0;
+            return None;
+        }
+        self.body[self.have] = byte;
+        self.have += 1;
+        if self.have < self.need {
+            return None;
+        }
+        self.need = 0;
+        let b = &self.body;
+        Some(match b[0] {
+            2 => NaiveReport::Digital {
+                pin: b[1],
+                value: b[2],
+            },
+            3 => NaiveReport::Analog {
+                pin: b[1],
+                value: u16::from_be_bytes([b[2], b[3]]),
+            },
+            11 => NaiveReport::Sonar {
+                trig: b[1],
+                echo: b[2],
+                cm: u16::from_be_bytes([b[3], b[4]]),
+            },
+            14 => NaiveReport::Encoder {
+                pin: b[1],
+                steps: b[2] as i8,
+            },
+            id => NaiveReport::Other { id },
+        })
+    }
+}
+
+/// The naive reader over `input` fed in `chunk`-byte pieces.
+fn naive_all(input: &[u8], chunk: usize) -> Found {
+    let mut reader = NaiveReader::new();
+    let mut found = Found::default();
+    for piece in input.chunks(chunk) {
+        for &byte in piece {
+            if let Some(report) = reader.push(byte) {
+                found.add(black_box(&report).id());
+            }
+        }
+    }
+    found
+}
+
+fn sum_bytes(input: &[u8]) -> u64 {
+    input
+        .iter()
+        .fold(0u64, |sum, &byte| sum.wrapping_add(u64::from(byte)))
 }
 
 fn bench(c: &mut Criterion) {
-    let input = reports();
+    let (input, generated) = reports();
+    let whole = input.len();
+
+    // Each benchmark finds exactly what was generated (checked once).
+    assert_eq!(decode_all(&input, whole), generated);
+    assert_eq!(decode_all(&input, 64), generated);
+    assert_eq!(naive_all(&input, whole), generated);
+
     let mut group = c.benchmark_group("telemetrix");
     group.throughput(Throughput::Bytes(input.len() as u64));
     group.bench_function("ceiling/sum_bytes", |b| {
-        b.iter(|| {
-            black_box(&input)
-                .iter()
-                .fold(0u64, |sum, &byte| sum.wrapping_add(u64::from(byte)))
-        })
+        b.iter(|| sum_bytes(black_box(&input)))
     });
     group.bench_function("decode/reports", |b| {
-        b.iter(|| decode_all(black_box(&input), input.len()))
+        b.iter(|| decode_all(black_box(&input), whole))
     });
     group.bench_function("decode/reports_chunk64", |b| {
         b.iter(|| decode_all(black_box(&input), 64))
+    });
+    group.bench_function("baseline/naive_reports", |b| {
+        b.iter(|| naive_all(black_box(&input), whole))
     });
     group.finish();
 }

@@ -10,8 +10,11 @@ use super::buf::{CommandBuf, Message, MessageBuf, ReportBuf};
 use super::command::{command_len_range, parse_command, Command};
 use super::dialect::Dialect;
 use super::error::Error;
+use super::fast;
 use super::module::{ModuleNew, ModuleType};
-use super::report::{parse_report_with, report_header_len, report_known, report_len_ok, Report};
+use super::report::{
+    parse_report_full, parse_report_with, report_header_len, report_known, report_len_ok, Report,
+};
 use super::wire::{command_id, report_id, MAX_COMMAND_LEN};
 
 mod sealed {
@@ -47,8 +50,14 @@ impl Side for Host {
     const COMMANDS: bool = false;
     const REPORTS: bool = true;
 
+    // `parse_report_with`, with the fast path inlined into the decoder's
+    // loop (other callers get it out of line).
+    #[inline(always)]
     fn parse(dialect: Dialect, lenient: bool, frame: &[u8]) -> Result<Report<'_>, Error> {
-        parse_report_with(dialect, lenient, frame)
+        match fast::parse(dialect, frame) {
+            Some(report) => Ok(report),
+            None => parse_report_full(dialect, lenient, frame),
+        }
     }
 
     fn to_owned(message: Report<'_>) -> ReportBuf {
@@ -109,8 +118,13 @@ impl Side for Both {
 
 /// Index of the first byte that is not `00`: a `00` length byte is dropped by
 /// the firmware, so it never starts a frame.
+#[inline(always)]
 fn skip_zeros(bytes: &[u8]) -> usize {
-    bytes.iter().position(|&b| b != 0).unwrap_or(bytes.len())
+    match bytes.first() {
+        // The next frame usually starts right here.
+        Some(&first) if first != 0 => 0,
+        _ => bytes.iter().position(|&b| b != 0).unwrap_or(bytes.len()),
+    }
 }
 
 /// Telemetrix framing for [`StreamDecoder`](crate::StreamDecoder), for one
@@ -193,7 +207,32 @@ impl<S: Side> Framing<S> {
         }
     }
 
-    fn check_report(&self, c: &[u8], lenient: bool) -> Check<Error> {
+    #[inline(always)]
+    pub(super) fn check_report(&self, c: &[u8], lenient: bool) -> Check<Error> {
+        // The common reports: one table load and eight compares.
+        if let Some(w) = fast::window(c) {
+            if let Some(n) = fast::accept(self.dialect, &w, c.len()) {
+                return Check::Frame(n);
+            }
+        }
+        self.check_report_slow(c, lenient)
+    }
+
+    /// The common reports cut by the end of a chunk wait for their whole
+    /// frame at once; anything else takes the full check (out of line, so
+    /// the clean path stays small).
+    #[inline(never)]
+    fn check_report_slow(&self, c: &[u8], lenient: bool) -> Check<Error> {
+        match fast::need(self.dialect, c) {
+            Some(n) => Check::Need(n),
+            None => self.check_report_full(c, lenient),
+        }
+    }
+
+    /// Every report, each check in turn (out of line: the table takes the
+    /// common ones).
+    #[inline(never)]
+    pub(super) fn check_report_full(&self, c: &[u8], lenient: bool) -> Check<Error> {
         let (len, rid) = match c {
             [] => return Check::Need(1),
             [0, ..] => return Check::Reject(Error::BadLength { id: 0, len: 0 }),
@@ -378,6 +417,7 @@ impl<S: Side> stream::FrameRules for Framing<S> {
     /// garbage 99.93 % instead of 100 % of intact frames), so it is off.
     const VERIFY_AFTER_RESYNC: bool = false;
 
+    #[inline]
     fn find_start(&self, bytes: &[u8]) -> usize {
         if S::REPORTS {
             // Skips `00` only: a LEN over 30 may start a report.
@@ -391,6 +431,7 @@ impl<S: Side> stream::FrameRules for Framing<S> {
         }
     }
 
+    #[inline]
     fn check(&self, candidate: &[u8], at_end: bool) -> Check<Error> {
         match (S::COMMANDS, S::REPORTS) {
             (true, true) => self.check_both(candidate),
@@ -411,6 +452,7 @@ impl<S: Side> stream::FrameRules for Framing<S> {
         false
     }
 
+    #[inline(always)]
     fn parse<'a>(&self, frame: &'a [u8]) -> Result<S::Message<'a>, Error> {
         S::parse(self.dialect, self.lenient, frame)
     }

@@ -186,6 +186,7 @@ mod buf;
 mod command;
 mod dialect;
 mod error;
+mod fast;
 mod fields;
 mod framing;
 mod list;

@@ -2,6 +2,7 @@
 
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
+use super::fast;
 use super::module::{module_report_len_ok, ModuleReport};
 use super::quirk::report_quirk;
 use super::sensor::{SensorReading, SensorType};
@@ -711,8 +712,25 @@ impl Encode for Report<'_> {
 /// Parse one complete report frame (`LEN` byte first) for `dialect`, with
 /// unknown ids accepted as [`Report::Unknown`] when `lenient`. This is the one
 /// definition of a valid report: the decoder accepts exactly what it accepts,
-/// and the encoder emits nothing it rejects.
+/// and the encoder emits nothing it rejects. The common streamed reports take
+/// a fast path (`fast::parse`), which gives exactly what
+/// [`parse_report_full`] gives (the fast module's tests check it).
+#[inline]
 pub(crate) fn parse_report_with(
+    dialect: Dialect,
+    lenient: bool,
+    frame: &[u8],
+) -> Result<Report<'_>, Error> {
+    match fast::parse(dialect, frame) {
+        Some(report) => Ok(report),
+        None => parse_report_full(dialect, lenient, frame),
+    }
+}
+
+/// [`parse_report_with`] for every report, each field checked in turn (out
+/// of line: the fast path takes the common ones).
+#[inline(never)]
+pub(super) fn parse_report_full(
     dialect: Dialect,
     lenient: bool,
     frame: &[u8],
