@@ -557,6 +557,50 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
         input: &mut &'i [u8],
     ) -> Option<Event<'a, F::Message<'a>, F::Error>> {
         self.apply_pending_drop();
+        // The clean stream's path, for messages of up to a cache line: the
+        // next frame starts right here, and either lies wholly inside the
+        // input (its event is built here, without the general step's enum
+        // of outcomes) or runs past its end (it is buffered). Anything else
+        // takes the general step, which asks the framing again. A larger
+        // message is better built at `emit`'s one parse site. Measured: this
+        // path makes commands, telemetry views and Pixy2 responses 10-40 %
+        // faster, and 76-byte OmniTiles telemetry 10-17 % slower. Only on
+        // 64-bit hosts: on a microcontroller its second copy of the framing
+        // and parser costs flash (about 380 B in the size report's decode
+        // row).
+        let small =
+            cfg!(target_pointer_width = "64") && core::mem::size_of::<F::Message<'i>>() <= 64;
+        let data: &'i [u8] = input;
+        if small
+            && self.len == 0
+            && (self.synced || !F::VERIFY_AFTER_RESYNC)
+            && !data.is_empty()
+            && self.framing.find_start(data) == 0
+        {
+            let offset = self.stats.bytes;
+            match self.framing.check(data, false) {
+                Check::Frame(n) if n > 0 => {
+                    if let Some((raw, rest)) = data.split_at_checked(n) {
+                        self.stats.bytes = offset.plus(n);
+                        self.synced = true;
+                        *input = rest;
+                        return Some(parse_counted(
+                            &self.framing,
+                            &mut self.stats,
+                            offset.to_u64(),
+                            raw,
+                        ));
+                    }
+                }
+                Check::Need(n) if data.len() < N => {
+                    self.keep_tail(data, n.max(data.len() + 1), offset);
+                    self.stats.bytes = offset.plus(data.len());
+                    *input = &[];
+                    return None;
+                }
+                _ => {}
+            }
+        }
         let step = if self.len > 0 {
             self.step_buffered(input)
         } else {
@@ -869,13 +913,7 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
                 None => self.reject_kind(self.framing.truncated(candidate.len())),
             },
             Verdict::Need(n) if candidate.len() < N => {
-                // Only a frame that straddles the end of the chunk is copied.
-                if let Some(front) = self.buf.get_mut(..candidate.len()) {
-                    front.copy_from_slice(candidate);
-                }
-                self.len = candidate.len();
-                self.need = n.min(N);
-                self.buf_offset = offset;
+                self.keep_tail(candidate, n, offset);
                 self.stats.bytes = self.stats.bytes.plus(data.len());
                 *input = &[];
                 return Step::Done;
@@ -894,6 +932,19 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
             offset: offset.to_u64(),
             error,
         })
+    }
+
+    /// Keep `candidate`, the rest of the input (shorter than the buffer), as
+    /// the buffered start of a frame that cannot resolve before `need` bytes.
+    /// Only a frame that straddles the end of the input is copied.
+    #[inline(always)]
+    fn keep_tail(&mut self, candidate: &[u8], need: usize, offset: C) {
+        if let Some(front) = self.buf.get_mut(..candidate.len()) {
+            front.copy_from_slice(candidate);
+        }
+        self.len = candidate.len();
+        self.need = need.min(N);
+        self.buf_offset = offset;
     }
 
     /// A candidate is buffered and no input is offered (`push`, `poll`):
