@@ -100,6 +100,14 @@
 //!   verification (only after a resync) and dropping consumed bytes stay out of
 //!   line. A protocol's `check`, `parse` and `find_start` should be `#[inline]`
 //!   (they are called across crates) — OmniTiles' `check` is `#[inline(always)]`.
+//! * **A short path for small messages (64-bit hosts).** A message of at most
+//!   64 bytes found where the input starts, with the decoder synced, is parsed
+//!   straight into the returned event (or its start buffered), skipping the
+//!   general step's enum of outcomes; larger messages keep the one parse site,
+//!   where they are faster. On 64-bit hosts the buffered step is also kept out
+//!   of line (inlined, it cost the in-place loop registers and copies).
+//!   Microcontrollers keep one compact path: the size report's rows do not
+//!   change.
 //! * **Buffer fast paths.** A buffered frame that was all the buffer held empties
 //!   the buffer when it is emitted (no copy, no rescan on the next call).
 //! * **A byte path for firmware.** `push` and `poll` resolve the stored bytes
