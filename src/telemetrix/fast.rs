@@ -303,10 +303,17 @@ mod tests {
     fn table_entries_agree_with_the_full_paths() {
         let mut rng = Rng(0x7ab1_e5ee_d000_0001);
         let mut accepted = 0;
-        for dialect in Dialect::ALL {
+        let dialects = if cfg!(miri) {
+            &Dialect::ALL[..1]
+        } else {
+            &Dialect::ALL[..]
+        };
+        for &dialect in dialects {
             for entry in &TABLES[dialect as usize].entries {
                 for sweep in 0..WINDOW {
-                    for value in 0..=255u8 {
+                    // Every value; under Miri, which interprets each
+                    // step (CI runs this module there too), a sample.
+                    for value in (0..=255u8).step_by(if cfg!(miri) { 255 } else { 1 }) {
                         let mut bytes = [0u8; WINDOW + 2];
                         for (i, b) in bytes.iter_mut().enumerate() {
                             *b = if i < WINDOW {
@@ -331,13 +338,16 @@ mod tests {
             }
         }
         // The sweep does reach the fast accept.
-        assert!(accepted > 10_000, "{accepted}");
+        assert!(
+            accepted > if cfg!(miri) { 10 } else { 10_000 },
+            "{accepted}"
+        );
     }
 
     #[test]
     fn random_bytes_agree_with_the_full_paths() {
         let mut rng = Rng(0x0dd_b17e5);
-        for _ in 0..200_000 {
+        for _ in 0..if cfg!(miri) { 200 } else { 200_000 } {
             let mut bytes = [0u8; 12];
             for b in &mut bytes {
                 *b = rng.byte();
