@@ -409,14 +409,20 @@ impl TryFrom<&[u8]> for Telemetry {
     type Error = Error;
 
     fn try_from(frame: &[u8]) -> Result<Telemetry, Error> {
-        let id = start_and_id(frame)?;
-        if id != id::TELEMETRY {
-            return Err(Error::UnknownId { id });
-        }
-        let layout = Layout::from_len(frame.len()).ok_or(Error::BadLength { len: frame.len() })?;
-        check_whole(frame, layout.frame_len())?;
-        Ok(Telemetry::parse(layout, frame))
+        Ok(Telemetry::parse(checked_layout(frame)?, frame))
     }
+}
+
+/// The layout of one whole telemetry frame, after checking its start byte,
+/// id, length and checksum.
+pub(super) fn checked_layout(frame: &[u8]) -> Result<Layout, Error> {
+    let id = start_and_id(frame)?;
+    if id != id::TELEMETRY {
+        return Err(Error::UnknownId { id });
+    }
+    let layout = Layout::from_len(frame.len()).ok_or(Error::BadLength { len: frame.len() })?;
+    check_whole(frame, layout.frame_len())?;
+    Ok(layout)
 }
 
 /// A reading for `Display`: the number, or `null` for no reading.

@@ -6,7 +6,7 @@ use core::fmt;
 use super::error::Error;
 use super::framing::{Framing, Host};
 use super::layout::Layout;
-use super::telemetry::{offsets, Imu, Telemetry, M1_ADCS_LEN, NO_READING};
+use super::telemetry::{checked_layout, offsets, Imu, Telemetry, M1_ADCS_LEN, NO_READING};
 use crate::stream::{Check, FrameRules};
 
 /// A checked telemetry frame whose fields are read on access: the same
@@ -130,9 +130,8 @@ impl<'a> TryFrom<&'a [u8]> for TelemetryView<'a> {
     /// One whole frame, checked as [`Telemetry::try_from`] checks it (the
     /// same errors).
     fn try_from(frame: &'a [u8]) -> Result<TelemetryView<'a>, Error> {
-        let owned = Telemetry::try_from(frame)?;
         Ok(TelemetryView {
-            layout: owned.layout,
+            layout: checked_layout(frame)?,
             frame,
         })
     }
