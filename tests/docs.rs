@@ -275,3 +275,39 @@ fn the_embedded_guide_shows_the_firmware_example() {
         );
     }
 }
+
+/// docs/embedded.md shows the firmware example's project files for a crates.io
+/// user (the crate does not contain the example): each block is the file, with
+/// the path dependency on robowire replaced by this release's version.
+#[test]
+fn the_embedded_guide_shows_the_firmware_project_files() {
+    let guide = read(&root().join("docs/embedded.md"));
+    let version = env!("CARGO_PKG_VERSION");
+    let release = version.rsplit_once('.').map_or(version, |(minor, _)| minor);
+    let mut shown = 0;
+    for (marker, rest) in guide
+        .split("<!-- firmware project: ")
+        .skip(1)
+        .filter_map(|part| part.split_once(" -->"))
+    {
+        let block = &code_blocks(rest)[0];
+        let file = read(&root().join("examples/firmware").join(marker));
+        let mut lines = file.lines();
+        for line in &block.lines {
+            let line = line.replace(
+                &format!("robowire = {{ version = \"{release}\","),
+                "robowire = { path = \"../..\",",
+            );
+            assert!(
+                lines.any(|l| l == line),
+                "docs/embedded.md shows a line of {marker} that examples/firmware/{marker} \
+                 does not have (or not in this order): {line:?}"
+            );
+        }
+        shown += 1;
+    }
+    assert_eq!(
+        shown, 4,
+        "Cargo.toml, .cargo/config.toml, memory.x and build.rs"
+    );
+}

@@ -5,7 +5,7 @@
 //! implements [`Decoder`] and [`Encoder<M>`] for every [`Encode`] message `M`,
 //! so a serial port, a TCP stream or a `tokio::io::duplex` pipe becomes a
 //! `Stream` of packets and a `Sink` of messages with `FramedRead`,
-//! `FramedWrite` or `OwnedFrame`.
+//! `FramedWrite` or `Framed`.
 //!
 //! `FramedRead` ends the stream at the first `Err`, so a rejected candidate
 //! (bad checksum, unknown id, garbage) is never an error here. What the stream
