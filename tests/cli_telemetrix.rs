@@ -780,7 +780,7 @@ fn malformed_json_lines() {
     let cases: &[(&str, &str)] = &[
         (r#"[1,2]"#, "expected a JSON object, found [1,2]"),
         (r#"{"counter":3}"#, "missing field `type`"),
-        (r#"{"type":"pling"}"#, "unknown type `pling`"),
+        (r#"{"type":"pling"}"#, "unknown type `pling` (did you mean `ping`?)"),
         (r#"{"type":"ping"}"#, "missing field `counter`"),
         (
             r#"{"type":"ping","counter":256}"#,
