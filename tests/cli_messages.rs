@@ -1,7 +1,8 @@
 //! What the `robowire` binary says on stderr about its input: encode's bad
 //! lines (too long, not UTF-8, a byte-order mark, invalid JSON), inputs that
 //! cannot be read, where hex text goes wrong, and the warnings about a
-//! misleading decode, which never change stdout or the exit status.
+//! misleading decode with their exit status 3 (SPI buffers read with the
+//! default layouts: refused with no output).
 
 #![cfg(feature = "cli")]
 
@@ -177,26 +178,36 @@ fn warned(counts: [u64; 6], warning: &str) -> String {
     summary_line(counts) + "robowire: warning: " + warning + "\n"
 }
 
+/// The stderr of a decode that warns and exits with status 3.
+fn failed(counts: [u64; 6], warning: &str) -> String {
+    warned(counts, warning)
+        + "robowire: the output is probably false (exit status 3); --allow-noise accepts it \
+           (see docs/cli.md)\n"
+}
+
+/// `args` with `--allow-noise` added.
+fn allowing<'a>(args: &[&'a str]) -> Vec<&'a str> {
+    [args, &["--allow-noise"]].concat()
+}
+
 #[test]
-fn hex_text_without_hex_warns() {
-    let r = run(
-        &["decode", "omnitiles", &data_arg("ble_notifications.hex")],
-        b"",
-    );
+fn hex_text_without_hex_fails() {
+    let capture = data_arg("ble_notifications.hex");
+    let args = ["decode", "omnitiles", &capture];
+    let warning = "the input looks like hex text: read it with --hex, \
+                   or --datagrams when each line is one datagram";
+    let r = run(&args, b"");
+    assert_eq!((r.code, r.stdout.len()), (3, 0));
+    assert_eq!(r.stderr, failed([0, 12720, 12720, 0, 0, 0], warning));
+    // Insisting keeps the warning and exits 0.
+    let r = run(&allowing(&args), b"");
     assert_eq!((r.code, r.stdout.len()), (0, 0));
-    assert_eq!(
-        r.stderr,
-        warned(
-            [0, 12720, 12720, 0, 0, 0],
-            "the input looks like hex text: read it with --hex, \
-             or --datagrams when each line is one datagram"
-        )
-    );
+    assert_eq!(r.stderr, warned([0, 12720, 12720, 0, 0, 0], warning));
     let r = run(&["decode", "pixy2"], b"0xae, 0xc1, 0x0e, 0x00\n");
-    assert_eq!((r.code, r.stdout.len()), (0, 0));
+    assert_eq!((r.code, r.stdout.len()), (3, 0));
     assert_eq!(
         r.stderr,
-        warned(
+        failed(
             [0, 23, 23, 0, 0, 0],
             "the input looks like hex text: read it with --hex"
         )
@@ -208,25 +219,27 @@ fn hex_text_without_hex_warns() {
 }
 
 #[test]
-fn the_wrong_protocol_warns() {
+fn the_wrong_protocol_fails() {
     let capture = data_arg("ble_telemetry.bin");
-    let r = run(&["decode", "telemetrix", &capture], b"");
-    // Output and status as without the warning: 70 false frames, status 0.
-    assert_eq!((r.code, r.lines().len()), (0, 70));
+    let args = ["decode", "telemetrix", &capture];
+    let warning = "most of the input did not decode (96 % skipped, 15052 candidates rejected, \
+                   70 frames): check the protocol, --from and --dialect; frames found this way \
+                   may be false";
+    // The 70 false frames are printed; the status says they are noise.
+    let r = run(&args, b"");
+    assert_eq!((r.code, r.lines().len()), (3, 70));
+    assert_eq!(r.stderr, failed([70, 15920, 15325, 0, 15052, 0], warning));
+    let allowed = run(&allowing(&args), b"");
+    assert_eq!((allowed.code, &allowed.stdout), (0, &r.stdout));
     assert_eq!(
-        r.stderr,
-        warned(
-            [70, 15920, 15325, 0, 15052, 0],
-            "most of the input did not decode (96 % skipped, 15052 candidates rejected, \
-             70 frames): check the protocol, --from and --dialect; frames found this way may \
-             be false"
-        )
+        allowed.stderr,
+        warned([70, 15920, 15325, 0, 15052, 0], warning)
     );
     let r = run(&["decode", "pixy2", &capture], b"");
-    assert_eq!((r.code, r.stdout.len()), (0, 0));
+    assert_eq!((r.code, r.stdout.len()), (3, 0));
     assert_eq!(
         r.stderr,
-        warned(
+        failed(
             [0, 15920, 15920, 0, 0, 0],
             "most of the input did not decode (100 % skipped, 0 candidates rejected, 0 frames): \
              check the protocol, --from; frames found this way may be false"
@@ -235,10 +248,13 @@ fn the_wrong_protocol_warns() {
     // The right protocol with the wrong direction.
     let commands = data_arg("host_commands.bin");
     let r = run(&["decode", "omnitiles", "--from", "tile", &commands], b"");
-    assert_eq!((r.code, r.stdout.len()), (0, 0));
-    assert!(r.stderr.ends_with(
+    assert_eq!((r.code, r.stdout.len()), (3, 0));
+    assert!(r.stderr.contains(
         "0 frames): check the protocol, --from and --layout; frames found this way may be false\n"
     ));
+    // The wrong layout: 5 false frames among 53-byte telemetry.
+    let r = run(&["decode", "omnitiles", "--layout", "pos7", &capture], b"");
+    assert_eq!((r.code, r.lines().len()), (3, 5));
 }
 
 #[test]
@@ -246,43 +262,151 @@ fn noise_alone_and_zero_padding_do_not_warn() {
     // A little noise is not worth a warning, nor is zero padding (SPI
     // command buffers are mostly padding).
     let r = run(&["decode", "omnitiles"], &[0x55; 63]);
-    assert_eq!(r.stderr, summary_line([0, 63, 63, 0, 0, 0]));
+    assert_eq!((r.code, r.stderr), (0, summary_line([0, 63, 63, 0, 0, 0])));
+    let r = run(&["decode", "omnitiles"], &[0x55; 64]);
+    assert_eq!(r.code, 3);
     let spi = data_arg("spi_commands.hex");
     let r = run(
         &["decode", "omnitiles", "--from", "host", "--datagrams", &spi],
         b"",
     );
-    assert_eq!(r.stderr, summary_line([44, 5120, 4953, 0, 0, 0]));
+    assert_eq!(
+        (r.code, r.stderr),
+        (0, summary_line([44, 5120, 4953, 0, 0, 0]))
+    );
     let r = run(
         &["decode", "omnitiles", "--from", "host", "--hex", &spi],
         b"",
     );
-    assert_eq!(r.stderr, summary_line([44, 5120, 4953, 0, 0, 0]));
+    assert_eq!(
+        (r.code, r.stderr),
+        (0, summary_line([44, 5120, 4953, 0, 0, 0]))
+    );
 }
 
+/// The error for SPI buffers read with the default layouts.
+const SPI_REFUSAL: &str = "robowire: the input looks like zero-padded SPI buffers, which the \
+    default layouts misread as false short frames: decode it with --layout spi45 (or \
+    auto,spi45); nothing was printed (exit status 3; --allow-noise prints what the default \
+    layouts find)\n";
+
 #[test]
-fn spi_buffers_without_spi45_warn() {
+fn spi_buffers_with_the_default_layouts_are_refused() {
     let capture = data_arg("spi_telemetry.bin");
-    let warning = "the input looks like zero-padded SPI buffers: decode it with --layout spi45, \
-                   or with --datagrams and one buffer per line";
-    for from in ["any", "tile"] {
-        let r = run(&["decode", "omnitiles", "--from", from, &capture], b"");
-        // The false frames (one 53-byte frame, two short prefixes that are
-        // the only length validating where they start), as without the warning.
-        assert_eq!((r.code, r.lines().len()), (0, 3));
-        assert!(r.lines()[2].contains(r#""layout":"ble53""#));
-        assert_eq!(r.stderr, warned([3, 8192, 8115, 61, 15, 0], warning));
-    }
-    // The same bytes as hex text.
     let bytes = std::fs::read(data("spi_telemetry.bin")).unwrap();
+    // Nothing printed, whatever the chunking (the check reads the first 256
+    // bytes before anything goes out), from a file or a pipe, and an input
+    // too short for that check is refused at its end.
+    for from in ["any", "tile"] {
+        for chunk in ["1", "100", "4096"] {
+            let r = run(
+                &[
+                    "decode",
+                    "omnitiles",
+                    "--from",
+                    from,
+                    "--chunk",
+                    chunk,
+                    &capture,
+                ],
+                b"",
+            );
+            assert_eq!((r.code, r.stdout.len()), (3, 0), "{from} {chunk}");
+            assert_eq!(r.stderr, SPI_REFUSAL);
+        }
+    }
+    let r = run(&["decode", "omnitiles", "--chunk", "7"], &bytes);
+    assert_eq!(
+        (r.code, r.stdout.len(), r.stderr.as_str()),
+        (3, 0, SPI_REFUSAL)
+    );
+    let r = run(&["decode", "omnitiles"], &bytes[..200]);
+    assert_eq!(
+        (r.code, r.stdout.len(), r.stderr.as_str()),
+        (3, 0, SPI_REFUSAL)
+    );
+    // The same bytes as hex text.
     let text: String = bytes.iter().map(|b| format!("{b:02x} ")).collect();
     let r = run(&["decode", "omnitiles", "--hex"], text.as_bytes());
-    assert_eq!((r.code, r.lines().len()), (0, 3));
-    assert_eq!(r.stderr, warned([3, 8192, 8115, 61, 15, 0], warning));
+    assert_eq!(
+        (r.code, r.stdout.len(), r.stderr.as_str()),
+        (3, 0, SPI_REFUSAL)
+    );
+    // Insisting prints the three false frames (one 53-byte frame, two short
+    // prefixes that are the only length validating where they start) and
+    // exits 0; naming the layouts prints them and exits 3, as mostly noise.
+    let warning = "the input looks like zero-padded SPI buffers: decode it with --layout spi45";
+    for (extra, code) in [("--allow-noise", 0), ("--layout=auto", 3)] {
+        let r = run(&["decode", "omnitiles", extra, &capture], b"");
+        assert_eq!((r.code, r.lines().len()), (code, 3), "{extra}");
+        assert!(r.lines()[2].contains(r#""layout":"ble53""#));
+        let counts = [3, 8192, 8115, 61, 15, 0];
+        let stderr = if code == 0 {
+            warned(counts, warning)
+        } else {
+            failed(counts, warning)
+        };
+        assert_eq!(r.stderr, stderr, "{extra}");
+    }
+    // One buffer per line is refused alike: the default layouts misread each.
+    let lines: String = bytes
+        .chunks(128)
+        .map(|buffer| {
+            buffer
+                .iter()
+                .map(|b| format!("{b:02x}"))
+                .collect::<String>()
+                + "\n"
+        })
+        .collect();
+    let r = run(&["decode", "omnitiles", "--datagrams"], lines.as_bytes());
+    assert_eq!(
+        (r.code, r.stdout.len(), r.stderr.as_str()),
+        (3, 0, SPI_REFUSAL)
+    );
     // With spi45 among the layouts, nothing is said.
     let r = run(&["decode", "omnitiles", "--layout", "spi45", &capture], b"");
     assert_eq!((r.code, r.lines().len()), (0, 64));
     assert_eq!(r.stderr, summary_line([64, 8192, 5312, 0, 0, 0]));
+    let r = run(
+        &["decode", "omnitiles", "--layout", "auto,spi45", &capture],
+        b"",
+    );
+    assert_eq!((r.code, r.lines().len()), (0, 64));
+    let r = run(
+        &["decode", "omnitiles", "--datagrams", "--layout", "spi45"],
+        lines.as_bytes(),
+    );
+    assert_eq!((r.code, r.lines().len()), (0, 64));
+}
+
+#[test]
+fn a_decode_that_is_no_spi_buffers_is_not_held_back() {
+    // A live stream: the first frame comes out before the input ends, as soon
+    // as the check has seen 256 bytes.
+    use std::io::{BufRead, BufReader, Write};
+    use std::process::{Command, Stdio};
+    let bytes = std::fs::read(data("ble_telemetry.bin")).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_robowire"))
+        .args(["decode", "omnitiles", "--chunk", "64"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    stdin.write_all(&bytes[..300]).unwrap();
+    stdin.flush().unwrap();
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    assert!(
+        line.starts_with(r#"{"offset":0,"len":53,"type":"telemetry""#),
+        "{line}"
+    );
+    drop(stdin);
+    assert_eq!(child.wait().unwrap().code(), Some(0));
 }
 
 /// A pseudo-terminal for the child's stdin, from the C library.

@@ -662,7 +662,7 @@ fn malformed_json_lines() {
     );
     let cases: Vec<(String, &str)> = vec![
         (r#"{"sigmap":1}"#.into(), "missing field `type`"),
-        (r#"{"type":"get_verison"}"#.into(), "unknown type `get_verison`"),
+        (r#"{"type":"get_verison"}"#.into(), "unknown type `get_verison` (did you mean `get_version`?)"),
         (r#"{"type":"get_version","extra":1}"#.into(), "unknown field `extra` for type get_version"),
         (r#"{"type":"get_fps","checksum":1}"#.into(), "field `checksum` must be true or false, found 1"),
         (

@@ -311,3 +311,154 @@ fn the_embedded_guide_shows_the_firmware_project_files() {
         "Cargo.toml, .cargo/config.toml, memory.x and build.rs"
     );
 }
+
+/// docs/cli.md's claims about what the tool does, checked by running it.
+#[cfg(feature = "cli")]
+mod cli_claims {
+    use super::{read, root};
+    use std::process::{Command, Output};
+
+    fn cli_md() -> String {
+        read(&root().join("docs/cli.md"))
+    }
+
+    /// `robowire ARGS` from the crate root (the docs' paths are relative to it).
+    fn robowire(args: &str) -> Output {
+        Command::new(env!("CARGO_BIN_EXE_robowire"))
+            .args(args.split_whitespace())
+            .current_dir(root())
+            .output()
+            .unwrap()
+    }
+
+    /// Every `` `decode …` (N [false ]frame[s], exit status S) `` in the text
+    /// (a space or a line break before the parenthesis): the arguments, N and
+    /// S.
+    fn frame_claims(text: &str) -> Vec<(String, usize, i32)> {
+        let mut claims = Vec::new();
+        for (i, _) in text.match_indices("`decode ") {
+            let rest = &text[i + 1..];
+            let Some(end) = rest.find('`') else { continue };
+            let args = rest[..end].to_owned();
+            let after = &rest[end + 1..];
+            let Some(claim) = after
+                .strip_prefix(' ')
+                .or_else(|| after.strip_prefix('\n'))
+                .and_then(|a| a.strip_prefix('('))
+            else {
+                continue;
+            };
+            let claim = &claim[..claim.find(')').expect("a closing parenthesis")];
+            let words: Vec<&str> = claim
+                .split(|c: char| c.is_whitespace() || c == ',')
+                .filter(|w| !w.is_empty())
+                .collect();
+            let frames = words[0].parse().unwrap_or_else(|_| panic!("{claim:?}"));
+            let status = words
+                .windows(3)
+                .find(|w| w[..2] == ["exit", "status"])
+                .map(|w| w[2].parse().unwrap())
+                .unwrap_or_else(|| panic!("{args}: {claim:?} gives no exit status"));
+            claims.push((args.replace('\n', " "), frames, status));
+        }
+        claims
+    }
+
+    #[test]
+    fn the_frame_counts_and_statuses_are_the_tools() {
+        let claims = frame_claims(&cli_md());
+        // The warnings table, SPI refusal and sample-capture paragraphs.
+        assert!(claims.len() >= 7, "{claims:?}");
+        for (args, frames, status) in claims {
+            let out = robowire(&args);
+            let lines = out.stdout.iter().filter(|&&b| b == b'\n').count();
+            assert_eq!(
+                (lines, out.status.code()),
+                (frames, Some(status)),
+                "docs/cli.md: `{args}`: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+    }
+
+    #[test]
+    fn the_false_spi_frames_are_the_tools() {
+        let out =
+            robowire("decode omnitiles --from tile --layout auto tests/data/spi_telemetry.bin");
+        let lens: Vec<String> = String::from_utf8(out.stdout)
+            .unwrap()
+            .lines()
+            .map(|line| {
+                let (_, rest) = line.split_once("\"len\":").expect("a len");
+                rest.split(',').next().unwrap().to_owned()
+            })
+            .collect();
+        let claim = format!(
+            "three false frames of {} and {} bytes",
+            lens[..2].join(", "),
+            lens[2]
+        );
+        assert_eq!(lens.len(), 3);
+        assert!(
+            cli_md().replace('\n', " ").contains(&claim),
+            "docs/cli.md lacks {claim:?}"
+        );
+    }
+
+    #[test]
+    fn the_exit_status_table_is_the_tools() {
+        let text = cli_md();
+        let (_, table) = text
+            .split_once("| status | when | for example |")
+            .expect("the exit status table");
+        let mut statuses = Vec::new();
+        for row in table.lines().skip(2).take_while(|l| l.starts_with('|')) {
+            let cells: Vec<&str> = row.split(" | ").collect();
+            let status: i32 = cells[0]
+                .trim_start_matches("| **")
+                .trim_end_matches("**")
+                .parse()
+                .unwrap_or_else(|_| panic!("{row}"));
+            let example = cells.last().unwrap().trim_end_matches(" |");
+            let args = example.trim_matches('`');
+            let out = robowire(args);
+            assert_eq!(out.status.code(), Some(status), "docs/cli.md: `{args}`");
+            statuses.push(status);
+        }
+        assert_eq!(statuses, [0, 1, 2, 3]);
+        // The tool's own help says the same.
+        let help = robowire("--help");
+        let help = String::from_utf8(help.stdout).unwrap();
+        for status in [
+            "0 on success",
+            "2 on usage errors",
+            "1 on I/O errors",
+            "3 when",
+        ] {
+            assert!(help.contains(status), "--help lacks {status:?}");
+        }
+    }
+
+    #[test]
+    fn the_spi_refusal_and_the_thresholds_are_the_tools() {
+        let text = cli_md();
+        let out = robowire("decode omnitiles tests/data/spi_telemetry.bin");
+        let stderr = String::from_utf8(out.stderr).unwrap();
+        assert!(
+            text.lines().any(|l| l == stderr.trim_end()),
+            "docs/cli.md does not show the refusal: {stderr}"
+        );
+        // The thresholds the help text gives are those docs/cli.md gives.
+        let help = robowire("decode omnitiles --help");
+        let help = String::from_utf8(help.stdout).unwrap().replace('\n', " ");
+        let percent = help
+            .split("over ")
+            .nth(1)
+            .and_then(|rest| rest.split(' ').next())
+            .expect("a share in the help text");
+        let rule = format!("over {percent} % of the bytes that are not `00` skipped");
+        assert!(text.contains(&rule), "docs/cli.md lacks {rule:?}");
+        assert!(help.contains("over 8 rejected candidates per frame"));
+        assert!(text.contains("or over 8 rejected candidates per frame"));
+    }
+}

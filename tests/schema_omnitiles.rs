@@ -262,7 +262,13 @@ fn bad_lines_have_the_cli_messages() {
     let cases: &[(&str, &str)] = &[
         (r#"[1,2]"#, "expected a JSON object, found [1,2]"),
         (r#"{"speed":3}"#, "missing field `type`"),
-        (r#"{"type":"m3_extend"}"#, "unknown type `m3_extend`"),
+        (
+            r#"{"type":"m3_extend"}"#,
+            "unknown type `m3_extend` (did you mean `m1_extend` or `m2_extend`?); the types are \
+             `ping`, `m1_extend`, `m1_retract`, `m1_brake`, `m1_set_position`, `m2_extend`, \
+             `m2_retract`, `m2_brake`, `m2_set_position`, `base_velocity`, `base_brake` and \
+             `telemetry`",
+        ),
         (r#"{"type":"m1_extend"}"#, "missing field `speed`"),
         (
             r#"{"type":"m1_extend","speed":256}"#,

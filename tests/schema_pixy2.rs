@@ -359,7 +359,7 @@ fn bad_lines_are_refused_with_the_command_line_messages() {
     );
     let cases: Vec<(String, &str)> = vec![
         (r#"{"sigmap":1}"#.into(), "missing field `type`"),
-        (r#"{"type":"get_verison"}"#.into(), "unknown type `get_verison`"),
+        (r#"{"type":"get_verison"}"#.into(), "unknown type `get_verison` (did you mean `get_version`?)"),
         (r#"{"type":"get_version","extra":1}"#.into(), "unknown field `extra` for type get_version"),
         (r#"{"type":"get_fps","checksum":1}"#.into(), "field `checksum` must be true or false, found 1"),
         (

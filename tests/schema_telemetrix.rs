@@ -756,7 +756,7 @@ fn a_frame_valid_both_ways_names_the_other_reading() {
 const BAD_LINES: &[(Dialect, &str, &str)] = &[
     (M13, r#"[1,2]"#, "expected a JSON object, found [1,2]"),
     (M13, r#"{"counter":3}"#, "missing field `type`"),
-    (M13, r#"{"type":"pling"}"#, "unknown type `pling`"),
+    (M13, r#"{"type":"pling"}"#, "unknown type `pling` (did you mean `ping`?)"),
     (M13, r#"{"type":"ping"}"#, "missing field `counter`"),
     (
         M13,

@@ -99,7 +99,7 @@ CASES = [
          {"source": "pico", "lenient": True}),
     Case("tmx_reports_any_lenient", "telemetrix_reports.bin", ("--from", "any", "--lenient"), T.Decoder,
          {"source": "any", "lenient": True}),
-    Case("tmx_reports_mirte12", "telemetrix_reports.bin", ("--from", "pico", "--dialect", "mirte12"),
+    Case("tmx_reports_mirte12", "telemetrix_reports.bin", ("--from", "pico", "--dialect", "mirte12", "--allow-noise"),
          T.Decoder, {"source": "pico", "dialect": "mirte12"}),
     Case("tmx_commands_host", "telemetrix_commands.hex", ("--from", "host"), T.Decoder,
          {"source": "host"}, hex=True),

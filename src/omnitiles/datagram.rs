@@ -118,8 +118,10 @@ impl<S: Side> DatagramDecoder<S> {
 /// frame to the nRF in a 128-byte buffer. A stream where they recur was
 /// captured on that SPI bus: decode it with `Spi45` among the layouts, or one
 /// buffer at a time with a [`DatagramDecoder`]. With the documented layouts
-/// its padding is skipped, its frames are lost, and a buffer whose checksum
-/// byte is `0x00` or `0x80` reads as a false 53-byte frame.
+/// its padding is skipped, its frames are lost, a buffer whose checksum byte
+/// is `0x00` or `0x80` reads as a false 53-byte frame, and now and then a
+/// prefix of a frame validates as a shorter layout (in `tests/data`'s 64
+/// buffers: a 53-, a 17- and a 7-byte false frame).
 ///
 /// ```
 /// let mut buffer = [0u8; 128];

@@ -15,7 +15,7 @@ use super::framing::{Framing, Side};
 use super::layout::{Layout, Layouts};
 use super::message::Message;
 use super::telemetry::{Imu, Telemetry, NO_READING};
-use crate::serde_support::{read_f32, read_int, serialize_f32, Fields, Value};
+use crate::serde_support::{read_f32, read_int, serialize_f32, unknown_type, Fields, Value};
 
 // ------------------------------------------------------------------ writing
 
@@ -265,7 +265,7 @@ fn read_message(kind: &str, fields: &mut Fields<'_>) -> Result<Message, String> 
         },
         "base_brake" => Command::BaseBrake,
         "telemetry" => return read_telemetry(fields).map(Message::Telemetry),
-        other => return Err(format!("unknown type `{other}`")),
+        other => return Err(unknown_type(other, &Message::NAMES)),
     };
     Ok(Message::Command(command))
 }

@@ -280,7 +280,21 @@ impl BlocksBuf {
         }
     }
 
-    /// The borrowed view.
+    /// The borrowed view: the [`Blocks`] a decoded frame gives, to iterate
+    /// or index (`view` throughout robowire, as
+    /// [`FeaturesBuf::view`](super::FeaturesBuf::view); searching the docs for
+    /// `as_blocks` finds it, and the compiler suggests it for `as_blocks()`).
+    ///
+    /// ```
+    /// use robowire::pixy2::{Block, BlocksBuf};
+    ///
+    /// let mut buf = BlocksBuf::new();
+    /// buf.push(Block::from_bytes(&[1, 0, 160, 0, 100, 0, 20, 0, 10, 0, 0, 0, 3, 9])).unwrap();
+    /// let blocks = buf.view();
+    /// assert_eq!(blocks.len(), 1);
+    /// assert_eq!(blocks.iter().next().unwrap().x, 160);
+    /// ```
+    #[doc(alias = "as_blocks")]
     pub fn view(&self) -> Blocks<'_> {
         Blocks {
             bytes: &self.bytes[..usize::from(self.len)],

@@ -510,7 +510,9 @@ impl FeaturesBuf {
         Features::new(payload).map(|f| f.to_owned())
     }
 
-    /// The borrowed view.
+    /// The borrowed view (`as_features` in a docs search, and in the
+    /// compiler's suggestions).
+    #[doc(alias = "as_features")]
     pub fn view(&self) -> Features<'_> {
         Features {
             bytes: &self.bytes[..usize::from(self.len)],

@@ -21,7 +21,7 @@ use serde::de::{Deserialize, Deserializer, Error as _};
 use serde::ser::{Serialize, SerializeMap, Serializer};
 
 use crate::encode::Encode;
-use crate::serde_support::{read_int, Fields, Value};
+use crate::serde_support::{read_int, unknown_type, Fields, Value};
 
 use super::blocks::{Block, BlocksBuf, MAX_BLOCKS};
 use super::envelope::{Envelope, Message, MessageBuf};
@@ -719,7 +719,7 @@ fn read_response(kind: &str, f: &mut Obj<'_>) -> Result<ResponseBuf, String> {
             let value = f.value("sections")?;
             ResponseBuf::Features(read_sections(value, &f.name("sections"))?)
         }
-        other => return Err(format!("unknown type `{other}`")),
+        other => return Err(unknown_type(other, &Message::NAMES)),
     })
 }
 

@@ -65,9 +65,11 @@ mod events;
 mod prefixed;
 
 mod reader;
+mod suggest;
 mod value;
 
 pub(crate) use reader::{read_f32, read_int, Fields};
+pub(crate) use suggest::unknown_type;
 pub(crate) use value::Value;
 
 /// Serialize an `f32` so that it reads back as the same `f32`: a finite value

@@ -211,7 +211,8 @@ pub enum Command<'a> {
     DigitalWrite {
         /// GPIO number (< 30).
         pin: u8,
-        /// Level (`true` is high).
+        /// Level, `true` for high: `1` on the wire, in JSON and in `Display`
+        /// (see [levels and flags](super#levels-and-flags)).
         value: bool,
     },
     /// 3 PWM_WRITE (k pins at once in mirte 1.3).
@@ -401,7 +402,8 @@ pub enum Command<'a> {
     SpiCsControl {
         /// GPIO number (< 30).
         cs_pin: u8,
-        /// Level.
+        /// Level, `true` for high (`level` `0`/`1` in JSON and `Display`:
+        /// [levels and flags](super#levels-and-flags)).
         high: bool,
     },
     /// 29 SET_SCAN_DELAY (mirte only).

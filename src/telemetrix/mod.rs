@@ -181,6 +181,26 @@
 //! it, checked exactly as the encoder checks (deserializing *is* encoding:
 //! an owned form holds a valid frame). `MessageBuf::deserialize_in` reads
 //! another dialect. Decoders and encoders never allocate; reading JSON does.
+//!
+//! # Levels and flags
+//!
+//! A pin level (DIGITAL_WRITE's and DIGITAL_REPORT's `value`, SPI_CS_CONTROL's
+//! `high`, JSON `level`, SPI_SET_FORMAT's `cpol` and `cpha`, the relay's
+//! `active_high`, JSON `active_level`) is a `bool` in Rust, `true` for high,
+//! so that no other value can be held; the
+//! JSON schema and [`Display`](core::fmt::Display) write it as the wire does,
+//! `0` or `1`, the way the firmware's documentation and a logic analyser show a
+//! level. A flag (`report_enable`, `auto_show`, `supported`, …) is `true` or
+//! `false` everywhere. So `Command::DigitalWrite { pin: 25, value: true }` is
+//! `{"type":"digital_write","pin":25,"value":1}` and `digital_write pin=25
+//! value=1`:
+//!
+//! ```
+//! use robowire::telemetrix::Command;
+//!
+//! let on = Command::DigitalWrite { pin: 25, value: true };
+//! assert_eq!(on.to_string(), "digital_write pin=25 value=1");
+//! ```
 
 mod buf;
 mod command;

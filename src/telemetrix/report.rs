@@ -281,7 +281,8 @@ pub enum Report<'a> {
     Digital {
         /// GPIO (< 30).
         pin: u8,
-        /// Level (`true` is high).
+        /// Level, `true` for high: `1` on the wire, in JSON and in `Display`
+        /// (see [levels and flags](super#levels-and-flags)).
         value: bool,
     },
     /// 3: an analog input changed.

@@ -28,7 +28,7 @@ use super::module::{
 use super::report::{Report, Sonar, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
 use super::sensor::{SensorNew, SensorReading, SensorType};
 use super::wire::{COMMAND_PAYLOAD_MAX, MAX_REPORT_FRAME, PIN_COUNT};
-use crate::serde_support::{read_f32, read_int, serialize_f32, Fields, Value};
+use crate::serde_support::{read_f32, read_int, serialize_f32, unknown_type, Fields, Value};
 
 // ---------------------------------------------------------------- Serialize
 
@@ -230,7 +230,12 @@ fn read_line(value: &Value, dialect: Dialect, want: Want) -> Result<MessageBuf, 
         fields.finish(&format!("for type {kind}"))?;
         report.to_buf_in(dialect).map(MessageBuf::from)
     } else {
-        return Err(format!("unknown type `{kind}`"));
+        let names = match want {
+            Want::Commands => Command::NAMES,
+            Want::Reports => Report::NAMES,
+            Want::Any => Message::NAMES,
+        };
+        return Err(unknown_type(kind, names));
     };
     encoded.map_err(|e| format!("cannot encode {kind} for {dialect}: {e}"))
 }

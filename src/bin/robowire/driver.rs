@@ -4,9 +4,9 @@
 //! plugs in by implementing [`Schema`]; it writes no per-message code.
 
 use crate::input::{ByteSource, HexBytes, Input, Lines, RawBytes};
+use crate::suspicion;
 use crate::Failure;
 use clap::Args;
-use robowire::omnitiles::padded_spi_frames;
 use robowire::stream::{FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats, StreamDecoder};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
@@ -47,6 +47,13 @@ pub struct DecodeCommon {
     /// stream instead of raw bytes.
     #[arg(long, display_order = 4)]
     pub hex: bool,
+    /// Exit 0 even when the output is probably false (hex text without
+    /// --hex, mostly noise, SPI buffers without spi45); the warning stays.
+    ///
+    /// Without it such a decode exits with status 3, and OmniTiles SPI
+    /// buffers read with the default layouts print nothing.
+    #[arg(long, display_order = 7)]
+    pub allow_noise: bool,
     /// Print rejected candidates too, as objects with `offset` and `error`.
     #[arg(long, display_order = 6)]
     pub errors: bool,
@@ -70,9 +77,12 @@ impl DecodeCommon {
 /// The end of every decode help text: the summary and the exit status.
 pub const DECODE_FOOTER: &str = "\
 Exit status: 0 on success, 2 on usage errors and invalid input (bad hex),
-1 on I/O errors. A closed stdout pipe ends the run quietly. A warning after
-the summary (hex text without --hex, SPI buffers without spi45, most of the
-input skipped) changes neither the output nor the exit status.";
+1 on I/O errors, 3 when the output is probably false: a warning after the
+summary says why (hex text without --hex; most of the input skipped, over 80 %
+of its non-zero bytes, or over 8 rejected candidates per frame; OmniTiles SPI
+buffers without spi45, which with the default layouts print nothing at all).
+--allow-noise makes that 0 and keeps the warning. A closed stdout pipe ends
+the run quietly.";
 
 /// Options every `encode` subcommand shares.
 #[derive(Debug, Args)]
@@ -86,13 +96,16 @@ pub struct EncodeCommon {
 }
 
 /// Buffered stdout that turns a closed pipe into [`Failure::BrokenPipe`],
-/// and what the decoded bytes looked like, for [`warning`].
+/// and what the decoded bytes looked like, for [`suspicion::assess`].
 pub struct Output {
     out: BufWriter<StdoutLock<'static>>,
     /// The first 64 KiB of the decoded bytes.
     start: Vec<u8>,
     /// How many of the decoded bytes were `00`.
     zeros: u64,
+    /// Output held back until the input's first [`suspicion::SPI_GATE`]
+    /// bytes show that it is no SPI buffers ([`Output::hold_for_spi`]).
+    held: Option<Vec<u8>>,
 }
 
 impl Output {
@@ -102,17 +115,54 @@ impl Output {
             out: BufWriter::with_capacity(64 * 1024, io::stdout().lock()),
             start: Vec::new(),
             zeros: 0,
+            held: None,
         }
+    }
+
+    /// Hold back everything written until the start of the input shows
+    /// whether it is zero-padded SPI buffers, to be refused with no output
+    /// ([`Printer::observe`] decides, or [`Output::finish`] at the end).
+    pub fn hold_for_spi(&mut self) {
+        self.held = Some(Vec::new());
     }
 
     /// Write `bytes`.
     pub fn write(&mut self, bytes: &[u8]) -> Result<(), Failure> {
-        self.out.write_all(bytes).map_err(Failure::stdout)
+        match &mut self.held {
+            Some(held) => {
+                held.extend_from_slice(bytes);
+                Ok(())
+            }
+            None => self.out.write_all(bytes).map_err(Failure::stdout),
+        }
     }
 
-    /// Write everything still buffered.
+    /// Write everything still buffered (nothing while output is held back).
     pub fn flush(&mut self) -> Result<(), Failure> {
+        if self.held.is_some() {
+            return Ok(());
+        }
         self.out.flush().map_err(Failure::stdout)
+    }
+
+    /// At the end of a run: write what was held back, or with `discard`
+    /// drop it, then flush.
+    pub fn finish(&mut self, discard: bool) -> Result<(), Failure> {
+        if let Some(held) = self.held.take().filter(|_| !discard) {
+            self.write(&held)?;
+        }
+        self.flush()
+    }
+
+    /// What [`suspicion::assess`] reads: the first 64 KiB of the decoded
+    /// bytes and how many of them all were `00`.
+    pub fn observed(&self) -> (&[u8], u64) {
+        (&self.start, self.zeros)
+    }
+
+    /// Whether output is still held back.
+    pub fn holding(&self) -> bool {
+        self.held.is_some()
     }
 }
 
@@ -153,13 +203,23 @@ impl<'o> Printer<'o> {
         self.out.write(buf)
     }
 
-    /// Note bytes about to be decoded, for [`warning`].
-    pub fn observe(&mut self, bytes: &[u8]) {
-        let room = 64 * 1024 - self.out.start.len();
-        self.out
-            .start
-            .extend_from_slice(&bytes[..room.min(bytes.len())]);
-        self.out.zeros += bytes.iter().filter(|&&b| b == 0).count() as u64;
+    /// Note bytes about to be decoded, for [`suspicion::assess`]. While
+    /// output is held back, the first [`suspicion::SPI_GATE`] bytes decide:
+    /// SPI buffers are [`Failure::Refused`] (nothing was printed), anything
+    /// else releases the output.
+    pub fn observe(&mut self, bytes: &[u8]) -> Result<(), Failure> {
+        let out = &mut *self.out;
+        let room = 64 * 1024 - out.start.len();
+        out.start.extend_from_slice(&bytes[..room.min(bytes.len())]);
+        out.zeros += bytes.iter().filter(|&&b| b == 0).count() as u64;
+        if out.held.is_some() && out.start.len() >= suspicion::SPI_GATE {
+            if suspicion::spi_buffers(&out.start) {
+                out.held = None;
+                return Err(Failure::Refused(suspicion::spi_refusal()));
+            }
+            out.finish(false)?;
+        }
+        Ok(())
     }
 
     /// Write out everything printed so far (before waiting for input, so a
@@ -222,7 +282,7 @@ where
                 })
             }
         };
-        printer.observe(&buf[..n]);
+        printer.observe(&buf[..n])?;
         for event in decoder.feed(&buf[..n]) {
             printer.event(annotate(event))?;
         }
@@ -288,44 +348,6 @@ pub fn listed<'n>(
 /// The one-line summary printed on stderr at the end of a decode.
 pub fn summary(stats: &Stats) -> String {
     format!("robowire: {stats}")
-}
-
-/// What a decode's [`warning`] may suggest: how to read hex text (`None`
-/// when it was read as hex), the options that choose what is accepted, and
-/// whether OmniTiles SPI buffers would be misread (no `spi45` layout).
-pub type Hints = (Option<&'static str>, &'static str, bool);
-
-/// Why the output of a decode may mislead, if it may: the input looks like
-/// hex text, or like zero-padded SPI buffers, or almost nothing in it decoded
-/// (over 90 % of its non-zero bytes skipped, or over 8 rejections per frame).
-/// A warning never changes the output or the exit status.
-pub fn warning(stats: &Stats, out: &Output, (hex, options, spi): Hints) -> Option<String> {
-    let start = &out.start;
-    let digits = start.iter().filter(|c| c.is_ascii_hexdigit()).count();
-    let text = |c: &u8| c.is_ascii_hexdigit() || b" \t\r\n,xX".contains(c);
-    if let Some(hex) = hex.filter(|_| digits >= 2 && start.iter().all(text)) {
-        return Some(format!("the input looks like hex text: read it with {hex}"));
-    }
-    if spi && padded_spi_frames(start) >= 2 {
-        return Some(
-            "the input looks like zero-padded SPI buffers: decode it with --layout spi45, \
-             or with --datagrams and one buffer per line"
-                .to_owned(),
-        );
-    }
-    let rejected = stats.checksum_errors + stats.rejected + stats.superseded;
-    let content = stats.bytes.saturating_sub(out.zeros);
-    let skipped = stats.skipped.saturating_sub(out.zeros);
-    let mostly_skipped = content >= 64 && skipped * 10 > content * 9;
-    let many_rejections = rejected >= 64 && rejected > 8 * stats.frames;
-    let (percent, frames) = (stats.skipped * 100 / stats.bytes.max(1), stats.frames);
-    (mostly_skipped || many_rejections).then(|| {
-        format!(
-            "most of the input did not decode ({percent} % skipped, {rejected} candidates \
-             rejected, {frames} frames): check the protocol, {options}; frames found this way \
-             may be false"
-        )
-    })
 }
 
 /// Encode every JSON line of the input with `protocol`, writing raw bytes or,

@@ -11,10 +11,10 @@ mod driver;
 mod input;
 mod omnitiles;
 mod pixy2;
+mod suspicion;
 mod telemetrix;
 
 use clap::{Parser, Subcommand};
-use robowire::omnitiles::Layout;
 use std::io;
 use std::process::ExitCode;
 
@@ -39,8 +39,10 @@ writes the frames' bytes, so `robowire decode omnitiles x.bin | robowire encode
 omnitiles` reproduces every decoded frame byte for byte. INPUT is a file, or `-`
 or absent for stdin. Streams of any size run in constant memory.
 
-Exit status: 0 on success, 2 on usage errors and invalid input, 1 on I/O errors.
-A closed stdout pipe ends the run quietly. `robowire decode <protocol> --help`
+Exit status: 0 on success, 2 on usage errors and invalid input, 1 on I/O errors,
+3 when a decode's output is probably false (hex text without --hex, mostly noise,
+OmniTiles SPI buffers without spi45; --allow-noise accepts it). A closed stdout
+pipe ends the run quietly. `robowire decode <protocol> --help`
 documents each protocol's JSON schema.";
 
 #[derive(Debug, Parser)]
@@ -93,6 +95,9 @@ pub enum Failure {
     Invalid(String),
     /// Problems already reported line by line; this sums them up (exit 2).
     Reported(String),
+    /// A decode refused before it printed anything, as its output would be
+    /// false (exit 3).
+    Refused(String),
     /// Reading or writing failed (exit 1).
     Io {
         /// The file or stream.
@@ -126,6 +131,10 @@ impl Failure {
             Failure::Invalid(message) | Failure::Reported(message) => {
                 eprintln!("robowire: {message}");
                 ExitCode::from(2)
+            }
+            Failure::Refused(message) => {
+                eprintln!("robowire: {message}");
+                ExitCode::from(suspicion::STATUS)
             }
             Failure::Io { context, error } => {
                 eprintln!("robowire: {context}: {error}");
@@ -161,51 +170,85 @@ fn run(verb: &Verb, out: &mut driver::Output) -> Result<Done, Failure> {
     }
 }
 
-/// What a warning after `protocol`'s decode may suggest ([`driver::Hints`]).
-fn hints(protocol: &DecodeProtocol) -> driver::Hints {
+/// What the checks after `protocol`'s decode may suggest, and whether the
+/// user accepts a doubtful decode (`--allow-noise`).
+fn hints(protocol: &DecodeProtocol) -> (suspicion::Hints, bool) {
     let hex = |common: &driver::DecodeCommon| (!common.hex).then_some("--hex");
-    match protocol {
+    let (hints, common) = match protocol {
         DecodeProtocol::Omnitiles(args) => (
-            hex(&args.common)
-                .filter(|_| !args.datagrams)
-                .map(|_| "--hex, or --datagrams when each line is one datagram"),
-            "--from and --layout",
-            !args.datagrams
-                && args.from != omnitiles::Side::Host
-                && !args.layout.iter().any(|set| set.contains(Layout::Spi45)),
+            suspicion::Hints {
+                hex: hex(&args.common)
+                    .filter(|_| !args.datagrams)
+                    .map(|_| "--hex, or --datagrams when each line is one datagram"),
+                options: "--from and --layout",
+                spi: args.spi_check(),
+            },
+            &args.common,
         ),
-        DecodeProtocol::Pixy2(args) => (hex(&args.common), "--from", false),
-        DecodeProtocol::Telemetrix(args) => (hex(&args.common), "--from and --dialect", false),
-    }
+        DecodeProtocol::Pixy2(args) => (
+            suspicion::Hints {
+                hex: hex(&args.common),
+                options: "--from",
+                spi: suspicion::SpiCheck::Off,
+            },
+            &args.common,
+        ),
+        DecodeProtocol::Telemetrix(args) => (
+            suspicion::Hints {
+                hex: hex(&args.common),
+                options: "--from and --dialect",
+                spi: suspicion::SpiCheck::Off,
+            },
+            &args.common,
+        ),
+    };
+    (hints, common.allow_noise)
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let mut out = driver::Output::stdout();
-    let result = run(&cli.command, &mut out);
-    // Frames decoded before a failure are still written.
-    let flushed = out.flush();
+    let mut result = run(&cli.command, &mut out);
+    // Output still held back at the end (an input shorter than the SPI
+    // check's gate) is refused as the gate would have refused it.
+    if out.holding() && suspicion::spi_buffers(out.observed().0) {
+        result = Err(Failure::Refused(suspicion::spi_refusal()));
+    }
+    let suspicion = match (&result, &cli.command) {
+        (Ok(Done::Decoded(decoded)), Verb::Decode { protocol }) => {
+            let (start, zeros) = out.observed();
+            let (hints, allow_noise) = hints(protocol);
+            suspicion::assess(&decoded.stats, start, zeros, hints).map(|s| (s, allow_noise))
+        }
+        _ => None,
+    };
+    // Frames decoded before a failure are still written, but not those of a
+    // refused decode.
+    let flushed = out.finish(matches!(result, Err(Failure::Refused(_))));
     let done = match (result, flushed) {
         (Err(Failure::BrokenPipe), _) | (_, Err(Failure::BrokenPipe)) => return ExitCode::SUCCESS,
         (Err(failure), _) | (Ok(_), Err(failure)) => return failure.report(),
         (Ok(done), Ok(())) => done,
     };
-    match (done, &cli.command) {
-        (Done::Decoded(decoded), Verb::Decode { protocol }) => {
-            // An input that could not be read at all has nothing to sum up.
-            if let (Some(failure @ Failure::Io { .. }), 0) = (&decoded.failure, decoded.stats.bytes)
-            {
-                return failure.report();
-            }
-            eprintln!("{}", driver::summary(&decoded.stats));
-            if let Some(warning) = driver::warning(&decoded.stats, &out, hints(protocol)) {
-                eprintln!("robowire: warning: {warning}");
-            }
-            match decoded.failure {
-                Some(failure) => failure.report(),
-                None => ExitCode::SUCCESS,
-            }
+    let Done::Decoded(decoded) = done else {
+        return ExitCode::SUCCESS;
+    };
+    // An input that could not be read at all has nothing to sum up.
+    if let (Some(failure @ Failure::Io { .. }), 0) = (&decoded.failure, decoded.stats.bytes) {
+        return failure.report();
+    }
+    eprintln!("{}", driver::summary(&decoded.stats));
+    let mut status = ExitCode::SUCCESS;
+    if let Some((suspicion, allow_noise)) = suspicion {
+        eprintln!("robowire: warning: {}", suspicion.warning);
+        if suspicion.fails && !allow_noise {
+            eprintln!("robowire: {}", suspicion::failed());
+            status = ExitCode::from(suspicion::STATUS);
         }
-        _ => ExitCode::SUCCESS,
+    }
+    match decoded.failure {
+        // An input failure's status (1 or 2) says more than the noise's.
+        Some(failure) => failure.report(),
+        None => status,
     }
 }

@@ -4,6 +4,7 @@
 
 use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
 use crate::input::{hex_line, Input, Lines};
+use crate::suspicion::SpiCheck;
 use crate::Failure;
 use clap::{Args, ValueEnum};
 use robowire::omnitiles::{
@@ -117,6 +118,24 @@ pub struct EncodeArgs {
     pub common: EncodeCommon,
 }
 
+impl DecodeArgs {
+    /// Whether zero-padded SPI buffers would be misread: telemetry decoded
+    /// without `spi45` (as a stream or as datagrams: the padding is skipped
+    /// either way and a few buffers read as false short frames). With the
+    /// default layouts that is refused (the user did not choose them), with
+    /// layouts the user named a warning.
+    pub fn spi_check(&self) -> SpiCheck {
+        let spi45 = self.layout.iter().any(|set| set.contains(Layout::Spi45));
+        if self.from == Side::Host || spi45 {
+            SpiCheck::Off
+        } else if self.layout.is_empty() {
+            SpiCheck::Refuse
+        } else {
+            SpiCheck::Warn
+        }
+    }
+}
+
 /// Run `decode omnitiles` with the decoder the options ask for.
 pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     let layouts = match args.layout.as_slice() {
@@ -144,12 +163,20 @@ fn run<S>(args: &DecodeArgs, framing: Framing<S>, out: &mut Output) -> Result<De
 where
     S: omnitiles::Side<Message: Serialize>,
 {
+    // Nothing is printed before the input is known not to be SPI buffers.
+    let hold = args.spi_check() == SpiCheck::Refuse && !args.common.allow_noise;
     if args.datagrams {
         let input = Input::open(args.common.input.as_deref())?;
+        if hold {
+            out.hold_for_spi();
+        }
         let mut printer = Printer::new(out, args.common.errors);
         return decode_datagrams(DatagramDecoder::new(framing), input, &mut printer);
     }
     let mut source = args.common.source()?;
+    if hold {
+        out.hold_for_spi();
+    }
     let mut printer = Printer::new(out, args.common.errors);
     // Every side's buffer is the same size.
     let decoder = StreamDecoder::<_, { omnitiles::BOTH_BUFFER }>::new(framing);
@@ -175,6 +202,7 @@ fn run_firmware(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure>
                 })
             }
         };
+        printer.observe(&buf[..n])?;
         for event in parser.feed(&buf[..n]) {
             printer.event(event)?;
         }
@@ -229,7 +257,7 @@ where
         if datagram.is_empty() {
             continue;
         }
-        printer.observe(&datagram);
+        printer.observe(&datagram)?;
         for event in decoder.decode(&datagram) {
             printer.event(event)?;
         }
