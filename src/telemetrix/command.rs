@@ -939,10 +939,14 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
             // the firmware indexes them as pin - 26: accepted, and flagged as
             // a quirk.
             let digital_ok = pin < PIN_COUNT;
+            // Mirte 1.2's and upstream 1.1's clients send an analog pin's
+            // GPIO number (26..=30) unchecked where their firmware takes an
+            // ADC number: accepted as sent, and flagged as a quirk.
+            let analog_ok = analog_pin_ok(Dialect::Mirte13, pin) || analog_pin_ok(dialect, pin);
             let m = match kind {
                 0 if pin == 0 => ModifyReporting::DisableAll,
-                1 if analog_pin_ok(dialect, pin) => ModifyReporting::EnableAnalog { pin },
-                3 if analog_pin_ok(dialect, pin) => ModifyReporting::DisableAnalog { pin },
+                1 if analog_ok => ModifyReporting::EnableAnalog { pin },
+                3 if analog_ok => ModifyReporting::DisableAnalog { pin },
                 2 if digital_ok => ModifyReporting::EnableDigital { pin },
                 4 if digital_ok => ModifyReporting::DisableDigital { pin },
                 0..=4 => {

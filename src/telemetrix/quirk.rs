@@ -17,6 +17,28 @@ use crate::EncodeError;
 /// [`MessageBuf::quirk`](super::MessageBuf::quirk)), which the JSON-lines
 /// schema writes as `"quirk":"<name>"` after the message's fields.
 ///
+/// | quirk | frame (example) | dialects | sent by | the firmware |
+/// |---|---|---|---|---|
+/// | [`DigitalReportingPinMinus26`](Quirk::DigitalReportingPinMinus26) | `03 04 04 02` | mirte 1.3 | the mirte Python client | indexes pin − 26 (spec §4.2) |
+/// | [`LevelNotBinary`](Quirk::LevelNotBinary) | `03 02 05 02` | all | a host writing a truthy byte | drives the pin high |
+/// | [`PwmTrailingBytes`](Quirk::PwmTrailingBytes) | `05 03 01 00 10 07` | mirte 1.3 | a host with a short last triple | takes `(LEN − 1) / 3` pins |
+/// | [`EncoderTypeNot1Or2`](Quirk::EncoderTypeNot1Or2) | `05 1e 03 02 03 00` | mirte 1.3, 1.2 | a host | sets up a quadrature encoder |
+/// | [`EchoedRequestByte`](Quirk::EchoedRequestByte) | `05 22 03 03 05 fe` (report) | mirte 1.3 | the Pico | echoes the subtype it did not know |
+/// | [`AnalogReportingPinNotAdc`](Quirk::AnalogReportingPinNotAdc) | `03 04 01 1a` | mirte 1.2, upstream 1.1 | their Python clients (`enable_analog_reporting(26)`, unchecked) | indexes its 5 analog pins with the byte |
+///
+/// The last rule is not in the spec, which gives those dialects' analog
+/// pins as ADC numbers 0..=4 (§10). Their firmware's MODIFY_REPORTING
+/// handler takes the type and the pin byte and, for types 1 and 3, sets the
+/// reporting flag of `analog_pins[pin]` without a range check; for types 2
+/// and 4 it indexes the digital pins directly (no `− 26`); type 0 ignores
+/// the pin. Their clients send the pin byte they are given, unchecked, so
+/// the decoder takes an analog pin by its ADC number (no quirk) or by its
+/// GPIO number 26..=30 (the numbering of the Pico's pinout and of mirte
+/// 1.3; flagged), digital pins below 30, and type 0 with pin 0 (what every
+/// client sends); other pin bytes stay rejected, as everywhere in the
+/// decoder. SET_PIN_MODE analog needs no such rule: those clients check its
+/// ADC number (0..=4) before sending.
+///
 /// ```
 /// use robowire::telemetrix::{CommandBuf, Dialect, Quirk};
 ///
@@ -46,16 +68,22 @@ pub enum Quirk {
     /// request: the SSD1306 "display disabled" reply (`request_sub, 254`)
     /// to a MODULE_DATA whose subtype is not 0..=3.
     EchoedRequestByte,
+    /// MODIFY_REPORTING type 1 or 3 (enable or disable an analog pin) in
+    /// mirte 1.2 or upstream 1.1 naming the pin by its GPIO number
+    /// (26..=30) where that firmware takes an ADC number (0..=4): it indexes
+    /// its five analog pins with the byte, out of range.
+    AnalogReportingPinNotAdc,
 }
 
 impl Quirk {
     /// Every quirk.
-    pub const ALL: [Quirk; 5] = [
+    pub const ALL: [Quirk; 6] = [
         Quirk::DigitalReportingPinMinus26,
         Quirk::LevelNotBinary,
         Quirk::PwmTrailingBytes,
         Quirk::EncoderTypeNot1Or2,
         Quirk::EchoedRequestByte,
+        Quirk::AnalogReportingPinNotAdc,
     ];
 
     /// The name the JSON-lines schema writes (snake case).
@@ -66,6 +94,7 @@ impl Quirk {
             Quirk::PwmTrailingBytes => "pwm_trailing_bytes",
             Quirk::EncoderTypeNot1Or2 => "encoder_type_not_1_or_2",
             Quirk::EchoedRequestByte => "echoed_request_byte",
+            Quirk::AnalogReportingPinNotAdc => "analog_reporting_pin_not_adc",
         }
     }
 
@@ -82,6 +111,7 @@ impl Quirk {
             Quirk::EchoedRequestByte => EncodeError::OutOfRange {
                 field: "request_sub",
             },
+            Quirk::AnalogReportingPinNotAdc => EncodeError::OutOfRange { field: "pin" },
         }
     }
 }
@@ -98,6 +128,9 @@ pub(crate) fn command_quirk(dialect: Dialect, frame: &[u8]) -> Option<Quirk> {
     match *frame {
         [3, cid::MODIFY_REPORTING, 2 | 4, _] if dialect == Dialect::Mirte13 => {
             Some(Quirk::DigitalReportingPinMinus26)
+        }
+        [3, cid::MODIFY_REPORTING, 1 | 3, pin] if dialect != Dialect::Mirte13 && pin > 4 => {
+            Some(Quirk::AnalogReportingPinNotAdc)
         }
         [3, cid::DIGITAL_WRITE, _, value] if value > 1 => Some(Quirk::LevelNotBinary),
         [len, cid::PWM_WRITE, ..] if len.wrapping_sub(1) % 3 != 0 => Some(Quirk::PwmTrailingBytes),
