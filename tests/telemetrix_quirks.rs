@@ -19,10 +19,7 @@ type Ev = Result<(u64, usize, MessageBuf), (u64, Error)>;
 
 /// Every event of `bytes` fed whole: offset, length and the owned message
 /// turned into a `MessageBuf`, or offset and error.
-fn events<F, const N: usize>(
-    mut decoder: StreamDecoder<F, N>,
-    bytes: &[u8],
-) -> Vec<Ev>
+fn events<F, const N: usize>(mut decoder: StreamDecoder<F, N>, bytes: &[u8]) -> Vec<Ev>
 where
     F: robowire::FrameRules<Error = Error>,
     F::Owned: Into<MessageBuf>,
@@ -117,4 +114,47 @@ fn analog_reporting_pin_ranges_in_mirte12_and_upstream11() {
         matches!(got.as_slice(), [Ok((0, 4, m))] if quirk_in(Dialect::Mirte13, m).is_none()),
         "{got:?}"
     );
+}
+
+/// `even_if_refused` encodes the frames whose only objection is a quirk the
+/// message holds, in every dialect where they are a real peer's; the plain
+/// encoder still refuses them, and the opt-in refuses what no peer sends.
+#[test]
+fn even_if_refused_encodes_quirky_frames_exactly() {
+    use robowire::telemetrix::{ModuleReport, Report};
+    use robowire::{Encode, FrameBuf};
+
+    let digital = Command::ModifyReporting(ModifyReporting::DisableDigital { pin: 2 });
+    let analog = Command::ModifyReporting(ModifyReporting::EnableAnalog { pin: 26 });
+    for (command, dialect, bytes) in [
+        (digital, Dialect::Mirte13, "03 04 04 02"),
+        (analog, Dialect::Mirte12, "03 04 01 1a"),
+        (analog, Dialect::Upstream11, "03 04 01 1a"),
+    ] {
+        assert!(FrameBuf::<31>::encode(&command.in_dialect(dialect)).is_err());
+        let frame = FrameBuf::<31>::encode(&command.in_dialect(dialect).even_if_refused());
+        assert_eq!(frame.unwrap().to_vec(), hex(bytes), "{dialect}");
+        let quirk = CommandBuf::parse_in(&hex(bytes), dialect).unwrap().quirk();
+        assert!(quirk.is_some(), "{dialect} {bytes}");
+    }
+    assert_eq!(
+        FrameBuf::<31>::encode(&digital.even_if_refused())
+            .unwrap()
+            .to_vec(),
+        hex("03 04 04 02")
+    );
+    // What is no frame at all stays refused.
+    let pin_31 = Command::ModifyReporting(ModifyReporting::EnableAnalog { pin: 31 });
+    assert!(
+        FrameBuf::<31>::encode(&pin_31.in_dialect(Dialect::Mirte12).even_if_refused()).is_err()
+    );
+
+    let disabled = Report::Module {
+        module_num: 3,
+        report: ModuleReport::Ssd1306Disabled { request_sub: 5 },
+    };
+    assert!(FrameBuf::<256>::encode(&disabled).is_err());
+    let mut out = [0u8; 8];
+    let n = disabled.even_if_refused().encode(&mut out).unwrap();
+    assert_eq!(&out[..n], &hex("05 22 03 03 05 fe")[..]);
 }

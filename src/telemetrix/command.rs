@@ -513,6 +513,17 @@ impl<'a> Command<'a> {
     /// Encode this command for `dialect` into the front of `out`; returns the
     /// frame length. Nothing is written on error.
     pub fn encode_in(&self, dialect: Dialect, out: &mut [u8]) -> Result<usize, EncodeError> {
+        self.encode_checked(dialect, out, false)
+    }
+
+    /// [`encode_in`](Self::encode_in), which with `even_if_refused` also
+    /// emits a frame that has a quirk.
+    pub(crate) fn encode_checked(
+        &self,
+        dialect: Dialect,
+        out: &mut [u8],
+        even_if_refused: bool,
+    ) -> Result<usize, EncodeError> {
         self.check_dialect(dialect)?;
         self.check_sizes()?;
         let n = self.encoded_len_in(dialect);
@@ -532,8 +543,9 @@ impl<'a> Command<'a> {
         parse_command(dialect, frame).map_err(Error::into_encode_error)?;
         // ... nor anything it flags: those frames are a real host's, never
         // what robowire sends.
-        if let Some(quirk) = command_quirk(dialect, frame) {
-            return Err(quirk.into_encode_error());
+        match command_quirk(dialect, frame) {
+            Some(quirk) if !even_if_refused => return Err(quirk.into_encode_error()),
+            _ => {}
         }
         if let Some(dst) = out.get_mut(..n) {
             dst.copy_from_slice(frame);

@@ -216,7 +216,7 @@ pub use module::{
     ServoPositions, Ssd1306Command, Ssd1306Done, MODULE_INIT_MAX,
 };
 pub use names::UnknownName;
-pub use quirk::Quirk;
+pub use quirk::{EvenIfRefused, Quirk};
 pub use report::{Report, Sonar, SonarReading, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
 pub use sensor::{SensorNew, SensorReading, SensorType};
 pub use wire::{

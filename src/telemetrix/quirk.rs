@@ -2,9 +2,12 @@
 //! frame (refusing it would lose it and, without a checksum, the frames
 //! around it) and flags it; the encoder refuses it.
 
+use super::command::Command;
 use super::dialect::Dialect;
-use super::wire::{command_id as cid, report_id as rid};
-use crate::EncodeError;
+use super::report::Report;
+use super::wire::{command_id as cid, report_id as rid, MAX_COMMAND_FRAME, MAX_REPORT_FRAME};
+use super::InDialect;
+use crate::{Encode, EncodeError};
 
 /// Something dubious in a frame that a real host or Pico sends, which the
 /// decoder accepts and flags, and the encoder refuses (spec §4, §4.2, §7.3).
@@ -76,7 +79,7 @@ pub enum Quirk {
 }
 
 impl Quirk {
-    /// Every quirk.
+    /// Every quirk, in the order of [`Quirk::NAMES`].
     pub const ALL: [Quirk; 6] = [
         Quirk::DigitalReportingPinMinus26,
         Quirk::LevelNotBinary,
@@ -85,18 +88,6 @@ impl Quirk {
         Quirk::EchoedRequestByte,
         Quirk::AnalogReportingPinNotAdc,
     ];
-
-    /// The name the JSON-lines schema writes (snake case).
-    pub const fn name(self) -> &'static str {
-        match self {
-            Quirk::DigitalReportingPinMinus26 => "digital_reporting_pin_minus_26",
-            Quirk::LevelNotBinary => "level_not_binary",
-            Quirk::PwmTrailingBytes => "pwm_trailing_bytes",
-            Quirk::EncoderTypeNot1Or2 => "encoder_type_not_1_or_2",
-            Quirk::EchoedRequestByte => "echoed_request_byte",
-            Quirk::AnalogReportingPinNotAdc => "analog_reporting_pin_not_adc",
-        }
-    }
 
     /// The encode error of a message whose frame would have this quirk:
     /// the one the encoder gave before the decoder accepted such frames.
@@ -113,12 +104,6 @@ impl Quirk {
             },
             Quirk::AnalogReportingPinNotAdc => EncodeError::OutOfRange { field: "pin" },
         }
-    }
-}
-
-impl core::fmt::Display for Quirk {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(self.name())
     }
 }
 
@@ -150,5 +135,88 @@ pub(crate) fn report_quirk(dialect: Dialect, frame: &[u8]) -> Option<Quirk> {
             Some(Quirk::EchoedRequestByte)
         }
         _ => None,
+    }
+}
+
+/// A message to be encoded even if its frame has a [`Quirk`]: the frame a
+/// real peer sends that the encoder otherwise refuses (`03 04 04 02` in
+/// mirte 1.3, `03 04 01 1A` in mirte 1.2). Made by `even_if_refused` on a
+/// [`Command`], a [`Report`] (mirte 1.3) or an [`InDialect`]; the shape of
+/// [`pixy2::Envelope::even_if_refused`](crate::pixy2::Envelope::even_if_refused).
+/// For testing a device, a host or a simulator with what real peers send.
+///
+/// Everything else is checked as [`Encode`] checks it: the frame must be
+/// one the decoder accepts. A quirk that a message cannot express (a level
+/// byte 2 is `value: true`, PWM trailing bytes and an encoder type 3 are
+/// not in the message) encodes to the plain frame; the owned forms a
+/// decoder yields keep the frame's own bytes, and the JSON-lines schema
+/// writes those bytes (see the `robowire` tool's docs).
+///
+/// ```
+/// use robowire::telemetrix::{Command, Dialect, ModifyReporting};
+/// use robowire::Encode;
+///
+/// let enable = Command::ModifyReporting(ModifyReporting::EnableAnalog { pin: 26 });
+/// let mut out = [0u8; 4];
+/// assert!(enable.in_dialect(Dialect::Mirte12).encode(&mut out).is_err());
+/// let n = enable.in_dialect(Dialect::Mirte12).even_if_refused().encode(&mut out)?;
+/// assert_eq!(&out[..n], &[0x03, 0x04, 0x01, 0x1a]);
+/// # Ok::<(), robowire::EncodeError>(())
+/// ```
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy)]
+pub struct EvenIfRefused<'m, M> {
+    message: &'m M,
+    dialect: Dialect,
+}
+
+impl<'m, M> InDialect<'m, M> {
+    /// This message, encoded for its dialect even if its frame has a
+    /// [`Quirk`].
+    pub const fn even_if_refused(self) -> EvenIfRefused<'m, M> {
+        EvenIfRefused {
+            message: self.message,
+            dialect: self.dialect,
+        }
+    }
+}
+
+impl<'a> Command<'a> {
+    /// This command, encoded for mirte 1.3 even if its frame has a [`Quirk`]
+    /// (see [`EvenIfRefused`]).
+    pub const fn even_if_refused(&self) -> EvenIfRefused<'_, Self> {
+        self.in_dialect(Dialect::Mirte13).even_if_refused()
+    }
+}
+
+impl<'a> Report<'a> {
+    /// This report, encoded for mirte 1.3 even if its frame has a [`Quirk`]
+    /// (see [`EvenIfRefused`]).
+    pub const fn even_if_refused(&self) -> EvenIfRefused<'_, Self> {
+        self.in_dialect(Dialect::Mirte13).even_if_refused()
+    }
+}
+
+impl Encode for EvenIfRefused<'_, Command<'_>> {
+    const MAX_LEN: usize = MAX_COMMAND_FRAME;
+
+    fn encoded_len(&self) -> usize {
+        self.message.encoded_len_in(self.dialect)
+    }
+
+    fn encode(&self, out: &mut [u8]) -> Result<usize, EncodeError> {
+        self.message.encode_checked(self.dialect, out, true)
+    }
+}
+
+impl Encode for EvenIfRefused<'_, Report<'_>> {
+    const MAX_LEN: usize = MAX_REPORT_FRAME;
+
+    fn encoded_len(&self) -> usize {
+        self.message.encoded_len_in(self.dialect)
+    }
+
+    fn encode(&self, out: &mut [u8]) -> Result<usize, EncodeError> {
+        self.message.encode_checked(self.dialect, out, true)
     }
 }
