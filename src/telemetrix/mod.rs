@@ -64,7 +64,9 @@
 //! the firmware reads them and flags them with a [`Quirk`]
 //! ([`CommandBuf::quirk`], [`ReportBuf::quirk`], [`MessageBuf::quirk`]; the
 //! owned forms keep the frame's own bytes, and the JSON-lines schema adds
-//! `"quirk":"<name>"` after the fields); the encoder refuses them as before:
+//! `"quirk":"<name>"` after the fields); the encoder refuses them unless
+//! asked with `even_if_refused()` ([`EvenIfRefused`]), and a JSON line reads
+//! back to its quirky frame only when it carries the marker:
 //! MODIFY_REPORTING types 2 and 4 in mirte 1.3 (`03 04 04 02`, sent by the
 //! mirte Python client), DIGITAL_WRITE levels other than 0/1 (read as high),
 //! PWM_WRITE with 1 or 2 bytes after the last whole pin (ignored), ENCODER_NEW
