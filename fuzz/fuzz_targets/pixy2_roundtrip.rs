@@ -24,7 +24,10 @@ fn same_line(line: serde_json::Result<serde_json::Value>, raw: &[u8]) {
         _ => FrameBuf::<261>::encode(&back),
     };
     assert_eq!(&frame.expect("the line encodes")[..], raw, "{line}");
-    assert_eq!(marked, matches!(back.body, MessageBuf::Request(r) if r.quirk().is_some()));
+    assert_eq!(
+        marked,
+        matches!(back.body, MessageBuf::Request(r) if r.quirk().is_some())
+    );
 }
 
 fn same<M: Encode>(message: &M, raw: &[u8]) {

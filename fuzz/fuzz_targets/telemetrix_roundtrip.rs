@@ -31,7 +31,8 @@ fuzz_target!(|data: &[u8]| {
         let mut input = data;
         while let Some(event) = commands.decode(&mut input) {
             if let Ok(frame) = event {
-                let owned = CommandBuf::parse_in(frame.raw, dialect).expect("a decoded frame parses");
+                let owned =
+                    CommandBuf::parse_in(frame.raw, dialect).expect("a decoded frame parses");
                 same_line(owned.into(), dialect, frame.raw);
                 let quirk = CommandBuf::parse_in(frame.raw, dialect).map(|c| c.quirk());
                 if quirk != Ok(None) {
@@ -59,7 +60,8 @@ fuzz_target!(|data: &[u8]| {
         let mut input = data;
         while let Some(event) = reports.decode(&mut input) {
             if let Ok(frame) = event {
-                let owned = ReportBuf::parse_in(frame.raw, dialect, false).expect("a decoded frame parses");
+                let owned =
+                    ReportBuf::parse_in(frame.raw, dialect, false).expect("a decoded frame parses");
                 same_line(owned.into(), dialect, frame.raw);
                 let quirk = ReportBuf::parse_in(frame.raw, dialect, false).map(|r| r.quirk());
                 if quirk != Ok(None) {
@@ -88,7 +90,8 @@ fuzz_target!(|data: &[u8]| {
         let mut input = data;
         while let Some(event) = reports.decode(&mut input) {
             if let Ok(frame) = event {
-                let owned = ReportBuf::parse_in(frame.raw, dialect, true).expect("a decoded frame parses");
+                let owned =
+                    ReportBuf::parse_in(frame.raw, dialect, true).expect("a decoded frame parses");
                 same_line(owned.into(), dialect, frame.raw);
                 let quirk = ReportBuf::parse_in(frame.raw, dialect, true).map(|r| r.quirk());
                 if quirk != Ok(None) {

@@ -30,7 +30,7 @@ use super::report::{Report, Sonar, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STAL
 use super::sensor::{SensorNew, SensorReading, SensorType};
 use super::wire::{COMMAND_PAYLOAD_MAX, MAX_REPORT_FRAME, PIN_COUNT};
 use crate::serde_support::{read_f32, read_int, serialize_f32, Fields, Value};
-use crate::{Encode, EncodeError};
+use crate::Encode;
 
 // ---------------------------------------------------------------- Serialize
 
@@ -264,7 +264,6 @@ fn read_marked(value: &Value, dialect: Dialect, want: Want) -> Result<MessageBuf
         trailing: Vec::new(),
     };
     let mut bytes = Vec::new();
-    let cannot = |e: EncodeError| format!("cannot encode {kind} for {dialect}: {e}");
     let encoded = if Command::NAMES.contains(&kind) && want != Want::Reports {
         let command = read_command(kind, &mut fields, dialect, &mut bytes, &mut raw)?;
         fields.finish(&format!("for type {kind}"))?;
@@ -272,53 +271,61 @@ fn read_marked(value: &Value, dialect: Dialect, want: Want) -> Result<MessageBuf
             None => command
                 .to_buf_in(dialect)
                 .map(MessageBuf::from)
-                .map_err(cannot)?,
-            Some(_) => {
-                let mut out = [0u8; MAX_REPORT_FRAME];
-                let encoder = command.in_dialect(dialect).even_if_refused();
-                let n = encoder.encode(&mut out).map_err(cannot)?;
-                let frame = raw.apply(&mut out, n);
-                CommandBuf::parse_in(frame, dialect)
-                    .map(MessageBuf::from)
-                    .map_err(|e| format!("cannot encode {kind} for {dialect}: {e}"))?
-            }
+                .map_err(|e| e.to_string()),
+            Some(_) => encode_marked(command.in_dialect(dialect).even_if_refused(), &raw, |f| {
+                CommandBuf::parse_in(f, dialect).map(Into::into)
+            }),
         }
     } else if Report::NAMES.contains(&kind) && want != Want::Commands {
         let report = read_report(kind, &mut fields, dialect, &mut bytes)?;
         fields.finish(&format!("for type {kind}"))?;
+        let lenient = matches!(report, Report::Unknown { .. });
         match quirk {
             None => report
                 .to_buf_in(dialect)
                 .map(MessageBuf::from)
-                .map_err(cannot)?,
-            Some(_) => {
-                let mut out = [0u8; MAX_REPORT_FRAME];
-                let encoder = report.in_dialect(dialect).even_if_refused();
-                let n = encoder.encode(&mut out).map_err(cannot)?;
-                let lenient = matches!(report, Report::Unknown { .. });
-                ReportBuf::parse_in(&out[..n], dialect, lenient)
-                    .map(MessageBuf::from)
-                    .map_err(|e| format!("cannot encode {kind} for {dialect}: {e}"))?
-            }
+                .map_err(|e| e.to_string()),
+            Some(_) => encode_marked(report.in_dialect(dialect).even_if_refused(), &raw, |f| {
+                ReportBuf::parse_in(f, dialect, lenient).map(Into::into)
+            }),
         }
     } else {
         return Err(format!("unknown type `{kind}`"));
     };
-    if let Some(quirk) = quirk {
-        let found = encoded.quirk();
-        if found != Some(quirk) {
-            return Err(match found {
-                Some(other) => format!(
-                    "the line says \"quirk\":\"{quirk}\", but its frame for {dialect} has `{other}`"
-                ),
-                None => format!(
-                    "the line says \"quirk\":\"{quirk}\", but its frame for {dialect} has no \
-                     quirk: leave `quirk` out"
-                ),
-            });
-        }
+    let encoded = encoded.map_err(|e| format!("cannot encode {kind} for {dialect}: {e}"))?;
+    check_marked(encoded, quirk, dialect)
+}
+
+/// The frame of a marked line: `encoder`'s, with the bytes the line gives
+/// put in (see [`Raw::apply`]), as the decoder parses it.
+fn encode_marked<E: Encode>(
+    encoder: E,
+    raw: &Raw,
+    parse: impl FnOnce(&[u8]) -> Result<MessageBuf, Error>,
+) -> Result<MessageBuf, String> {
+    let mut out = [0u8; MAX_REPORT_FRAME];
+    let n = encoder.encode(&mut out).map_err(|e| e.to_string())?;
+    parse(raw.apply(&mut out, n)).map_err(|e| e.to_string())
+}
+
+/// `encoded`, if its frame has the quirk the line says (none or one).
+fn check_marked(
+    encoded: MessageBuf,
+    quirk: Option<Quirk>,
+    dialect: Dialect,
+) -> Result<MessageBuf, String> {
+    let found = encoded.quirk();
+    match (quirk, found) {
+        (None, _) => Ok(encoded),
+        (Some(said), Some(found)) if said == found => Ok(encoded),
+        (Some(said), Some(other)) => Err(format!(
+            "the line says \"quirk\":\"{said}\", but its frame for {dialect} has `{other}`"
+        )),
+        (Some(said), None) => Err(format!(
+            "the line says \"quirk\":\"{said}\", but its frame for {dialect} has no quirk: \
+             leave `quirk` out"
+        )),
     }
-    Ok(encoded)
 }
 
 impl Raw {
