@@ -4,6 +4,8 @@
 //! encoder refuses without their marker (`quirk`), and on generated noise
 //! with those frames inside.
 
+#![cfg(feature = "cli")]
+
 mod cli_common;
 
 use cli_common::{data, run};
