@@ -614,15 +614,11 @@ fn read_message(value: &Value) -> Result<(Option<Form>, MessageBuf), String> {
         MessageBuf::Response(_) => Form::Checksum,
     };
     let mut out = [0u8; MAX_FRAME_LEN];
-    let envelope = Envelope::new(form.unwrap_or(default), message);
-    match envelope.body {
-        // Marked, and so asked for.
-        MessageBuf::Request(request) if quirk.is_some() => Envelope::new(envelope.form, request)
-            .even_if_refused()
-            .encode(&mut out),
-        _ => envelope.encode(&mut out),
-    }
-    .map_err(|e| e.to_string())?;
+    // A refused request got here only marked, and so asked for.
+    Envelope::new(form.unwrap_or(default), message)
+        .even_if_refused()
+        .encode(&mut out)
+        .map_err(|e| e.to_string())?;
     Ok((form, message))
 }
 
