@@ -667,7 +667,9 @@ fn malformed_json_lines() {
         (r#"{"type":"get_fps","checksum":1}"#.into(), "field `checksum` must be true or false, found 1"),
         (
             r#"{"type":"get_blocks","sigmap":0,"max_blocks":1}"#.into(),
-            "field `sigmap` must be an integer 1..=255, found 0 (the device refuses 0 with ERROR -3)",
+            "field `sigmap` must be an integer 1..=255, found 0 (the device refuses 0 with ERROR -3; \
+             decode marks such a request \"quirk\":\"sigmap_zero\": add that to the line to \
+             encode it anyway)",
         ),
         (r#"{"type":"get_blocks","sigmap":1}"#.into(), "missing field `max_blocks`"),
         (
@@ -824,8 +826,8 @@ fn get_blocks_with_sigmap_zero_decodes_as_the_request_it_is() {
         assert_eq!(
             r.lines(),
             [
-                r#"{"offset":0,"len":6,"type":"get_blocks","checksum":false,"sigmap":0,"max_blocks":5}"#,
-                r#"{"offset":6,"len":8,"type":"get_blocks","checksum":true,"sigmap":0,"max_blocks":5}"#,
+                r#"{"offset":0,"len":6,"type":"get_blocks","checksum":false,"sigmap":0,"max_blocks":5,"quirk":"sigmap_zero"}"#,
+                r#"{"offset":6,"len":8,"type":"get_blocks","checksum":true,"sigmap":0,"max_blocks":5,"quirk":"sigmap_zero"}"#,
             ],
             "--from {from}"
         );

@@ -364,7 +364,9 @@ fn bad_lines_are_refused_with_the_command_line_messages() {
         (r#"{"type":"get_fps","checksum":1}"#.into(), "field `checksum` must be true or false, found 1"),
         (
             r#"{"type":"get_blocks","sigmap":0,"max_blocks":1}"#.into(),
-            "field `sigmap` must be an integer 1..=255, found 0 (the device refuses 0 with ERROR -3)",
+            "field `sigmap` must be an integer 1..=255, found 0 (the device refuses 0 with ERROR -3; \
+             decode marks such a request \"quirk\":\"sigmap_zero\": add that to the line to \
+             encode it anyway)",
         ),
         (r#"{"type":"get_blocks","sigmap":1}"#.into(), "missing field `max_blocks`"),
         (

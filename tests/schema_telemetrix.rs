@@ -796,7 +796,27 @@ const BAD_LINES: &[(Dialect, &str, &str)] = &[
     (
         Dialect::Mirte12,
         r#"{"type":"modify_reporting","action":"enable_analog","pin":26}"#,
-        "field `pin` must be an integer 0..=4, found 26",
+        "field `pin` must be an integer 0..=4, found 26 (a frame a real peer sends, which \
+         decode marks \"quirk\":\"analog_reporting_pin_not_adc\": add that to the line to \
+         encode it anyway)",
+    ),
+    (
+        Dialect::Mirte12,
+        r#"{"type":"modify_reporting","action":"enable_analog","pin":31,"quirk":"analog_reporting_pin_not_adc"}"#,
+        "field `pin` must be an integer 26..=30, found 31",
+    ),
+    (
+        M13,
+        r#"{"type":"digital_write","pin":5,"value":1,"quirk":"level_not_binary"}"#,
+        "the line says \"quirk\":\"level_not_binary\", but its frame for mirte13 has no quirk: \
+         leave `quirk` out",
+    ),
+    (
+        M13,
+        r#"{"type":"ping","counter":1,"quirk":"odd"}"#,
+        "field `quirk` must be one of digital_reporting_pin_minus_26, level_not_binary, \
+         pwm_trailing_bytes, encoder_type_not_1_or_2, echoed_request_byte, \
+         analog_reporting_pin_not_adc, found \"odd\"",
     ),
     (
         M13,

@@ -384,24 +384,50 @@ fn the_encoder_still_refuses_them() {
 #[cfg(feature = "serde")]
 #[test]
 fn the_json_form_carries_the_quirk_after_the_fields() {
+    // The level byte as sent: the line encodes back to the frame.
     let c = one_command(&[0x03, 0x02, 0x19, 0x02]);
-    assert_eq!(
-        serde_json::to_string(&c).unwrap(),
-        r#"{"type":"digital_write","pin":25,"value":1,"quirk":"level_not_binary"}"#
-    );
+    let line = r#"{"type":"digital_write","pin":25,"value":2,"quirk":"level_not_binary"}"#;
+    assert_eq!(serde_json::to_string(&c).unwrap(), line);
+    let back = serde_json::from_str::<CommandBuf>(line).unwrap();
+    assert_eq!(&back[..], &[0x03, 0x02, 0x19, 0x02]);
     // Lines without a quirk are unchanged.
     let c = one_command(&[0x03, 0x02, 0x19, 0x01]);
     assert_eq!(
         serde_json::to_string(&c).unwrap(),
         r#"{"type":"digital_write","pin":25,"value":1}"#
     );
-    // Reading a flagged line back is refused, with the reason.
-    let err = serde_json::from_str::<CommandBuf>(
+    // A marker the frame does not have is refused, with the reason; so is
+    // the quirky frame without its marker, naming the marker.
+    for line in [
         r#"{"type":"digital_write","pin":25,"value":1,"quirk":"level_not_binary"}"#,
-    )
-    .unwrap_err()
-    .to_string();
-    assert!(err.contains("level_not_binary"), "{err}");
+        r#"{"type":"digital_write","pin":25,"value":2}"#,
+    ] {
+        let err = serde_json::from_str::<CommandBuf>(line)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("\"quirk\":\"level_not_binary\""), "{err}");
+    }
+}
+
+/// Every frame of the generated stream of every mirte 1.3 command (quirky
+/// frames included) reads back from its JSON line to exactly its bytes.
+#[cfg(feature = "serde")]
+#[test]
+fn every_generated_line_encodes_to_its_frame() {
+    for seed in 1..=3 {
+        let (bytes, truth) = stream(seed, 10_047);
+        let found = decode(&bytes, bytes.len());
+        assert_eq!(found.len(), truth.len());
+        let mut quirks = 0;
+        for (offset, len, command) in found {
+            quirks += usize::from(command.quirk().is_some());
+            let line = serde_json::to_string(&command).unwrap();
+            let back = serde_json::from_str::<CommandBuf>(&line).unwrap();
+            let frame = &bytes[offset as usize..offset as usize + len];
+            assert_eq!(&back[..], frame, "{line}");
+        }
+        assert!(quirks > 0, "the stream holds quirky frames");
+    }
 }
 
 /// Corruption of the command stream: the figures are no worse than before

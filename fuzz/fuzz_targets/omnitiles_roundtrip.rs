@@ -1,6 +1,7 @@
 //! Decode arbitrary bytes; every decoded frame is the input's bytes at its
-//! offset, re-encodes to exactly those bytes, and decodes alone (as a datagram,
-//! and through the typed `TryFrom<&[u8]>`) to the same message.
+//! offset, re-encodes to exactly those bytes (also through its JSON line, as
+//! `robowire decode | robowire encode` does), and decodes alone (as a
+//! datagram, and through the typed `TryFrom<&[u8]>`) to the same message.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -56,6 +57,11 @@ fn check_round_trip(raw: &[u8], message: &Message) {
     assert_eq!(message.encode_buf(&mut buf), Ok(raw.len()));
     assert_eq!(&buf[..], raw);
     assert_eq!(Message::try_from(raw), Ok(*message));
+    // decode | encode: the JSON line reads back to a message of these bytes.
+    let line = serde_json::to_string(message).expect("a message serializes");
+    let back: Message = serde_json::from_str(&line).expect("its line reads back");
+    let encoded = FrameBuf::<{ Message::MAX_LEN }>::encode(&back).expect("the line encodes");
+    assert_eq!(&*encoded, raw, "the line {line} encodes to the frame");
     match message {
         Message::Telemetry(t) => {
             assert!(t.is_consistent());

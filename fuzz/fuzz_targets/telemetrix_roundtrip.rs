@@ -1,14 +1,25 @@
 //! Telemetrix round trip: every frame decoded from arbitrary bytes, command
 //! or report, re-encodes to exactly its bytes in the dialect it was decoded
 //! in, unless it has a quirk (a real peer's frame, which the encoder
-//! refuses).
+//! refuses); and every frame's JSON line, quirky or not, reads back in that
+//! dialect to exactly its bytes (`robowire decode | robowire encode`).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use robowire::telemetrix::{
     CommandBuf, Device, DeviceDecoder, Dialect, Framing, Host, HostDecoder, LenientHostDecoder,
-    ReportBuf,
+    MessageBuf, ReportBuf,
 };
+
+/// decode | encode: the owned form read in the decoder's dialect (as the
+/// tool's capture context reads it) serializes to a line that reads back,
+/// in that dialect, to exactly `raw`.
+fn same_line(owned: MessageBuf, dialect: Dialect, raw: &[u8]) {
+    let line = serde_json::to_string(&owned).expect("a frame serializes");
+    let mut json = serde_json::Deserializer::from_str(&line);
+    let back = MessageBuf::deserialize_in(&mut json, dialect).expect("its line reads back");
+    assert_eq!(back.frame(), raw, "{line}");
+}
 
 const DIALECTS: [Dialect; 3] = [Dialect::Mirte13, Dialect::Mirte12, Dialect::Upstream11];
 
@@ -20,6 +31,9 @@ fuzz_target!(|data: &[u8]| {
         let mut input = data;
         while let Some(event) = commands.decode(&mut input) {
             if let Ok(frame) = event {
+                let owned =
+                    CommandBuf::parse_in(frame.raw, dialect).expect("a decoded frame parses");
+                same_line(owned.into(), dialect, frame.raw);
                 let quirk = CommandBuf::parse_in(frame.raw, dialect).map(|c| c.quirk());
                 if quirk != Ok(None) {
                     assert!(quirk.is_ok(), "a decoded frame parses");
@@ -46,6 +60,9 @@ fuzz_target!(|data: &[u8]| {
         let mut input = data;
         while let Some(event) = reports.decode(&mut input) {
             if let Ok(frame) = event {
+                let owned =
+                    ReportBuf::parse_in(frame.raw, dialect, false).expect("a decoded frame parses");
+                same_line(owned.into(), dialect, frame.raw);
                 let quirk = ReportBuf::parse_in(frame.raw, dialect, false).map(|r| r.quirk());
                 if quirk != Ok(None) {
                     assert!(quirk.is_ok(), "a decoded frame parses");
@@ -73,6 +90,9 @@ fuzz_target!(|data: &[u8]| {
         let mut input = data;
         while let Some(event) = reports.decode(&mut input) {
             if let Ok(frame) = event {
+                let owned =
+                    ReportBuf::parse_in(frame.raw, dialect, true).expect("a decoded frame parses");
+                same_line(owned.into(), dialect, frame.raw);
                 let quirk = ReportBuf::parse_in(frame.raw, dialect, true).map(|r| r.quirk());
                 if quirk != Ok(None) {
                     continue;

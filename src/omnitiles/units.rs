@@ -115,8 +115,24 @@ pub fn duty_to_velocity(duty: f32) -> i8 {
     round((duty * 127.0).clamp(-128.0, 127.0)) as i8
 }
 
-/// A raw position or ADC reading (0..=4095) in millimetres along the stroke:
-/// `raw / 4095 · stroke`.
+/// A raw position or ADC reading (0..=4095) in millimetres along the stroke,
+/// as the SDK computes it (`raw / 4095 · stroke`, see [`adc_to_mm_f64`])
+/// and rounded once to `f32`. The tile's firmware sends the raw reading and
+/// converts nothing, so the SDK's number is the reference; computed in `f32`
+/// throughout, the result was one ulp off it for a quarter of all inputs.
+///
+/// ```
+/// use robowire::omnitiles::{units::adc_to_mm, Motor};
+/// assert_eq!(adc_to_mm(Motor::M1, 2000), (2000.0_f64 / 4095.0 * 150.0) as f32);
+/// ```
 pub fn adc_to_mm(motor: Motor, raw: u16) -> f32 {
-    f32::from(raw) / f32::from(ADC_FULL_SCALE) * motor.stroke_mm()
+    adc_to_mm_f64(motor, raw) as f32
+}
+
+/// A raw position or ADC reading in millimetres exactly as the SDK computes
+/// it: `raw / 4095 * stroke` in `f64` (Python's float), bit for bit. On a
+/// target without a double-precision FPU this links the soft-float `f64`
+/// division, as [`adc_to_mm`] does.
+pub fn adc_to_mm_f64(motor: Motor, raw: u16) -> f64 {
+    f64::from(raw) / f64::from(ADC_FULL_SCALE) * f64::from(motor.stroke_mm())
 }

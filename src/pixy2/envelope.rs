@@ -263,11 +263,52 @@ impl Envelope<Request> {
     }
 }
 
+impl Envelope<MessageBuf> {
+    /// This message, to be encoded even if it is a request the device
+    /// refuses (see [`Envelope::<Request>::even_if_refused`]); a response
+    /// encodes as it does anyway. A line of the JSON-lines schema
+    /// deserializes to such a request only when it carries the marker
+    /// (`"quirk":"sigmap_zero"`), so encoding every deserialized line
+    /// through this is `robowire encode pixy2`.
+    pub const fn even_if_refused(self) -> EvenIfRefused<MessageBuf> {
+        EvenIfRefused(self)
+    }
+}
+
 /// A request that encodes even if the device refuses it with an error
-/// (getBlocks with sigmap 0); made by [`Envelope::even_if_refused`].
+/// (getBlocks with sigmap 0); made by [`Envelope::even_if_refused`]. `M` is
+/// [`Request`], or [`MessageBuf`] for either direction.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct EvenIfRefused(pub Envelope<Request>);
+pub struct EvenIfRefused<M = Request>(pub Envelope<M>);
+
+impl Encode for EvenIfRefused<MessageBuf> {
+    const MAX_LEN: usize = <Envelope<MessageBuf> as Encode>::MAX_LEN;
+
+    fn encoded_len(&self) -> usize {
+        self.0.encoded_len()
+    }
+
+    fn encode(&self, out: &mut [u8]) -> Result<usize, EncodeError> {
+        match self.0.body {
+            MessageBuf::Request(request) => {
+                EvenIfRefused(Envelope::new(self.0.form, request)).encode(out)
+            }
+            MessageBuf::Response(_) => self.0.encode(out),
+        }
+    }
+}
+
+impl MessageBuf {
+    /// What the device would refuse in this message, if anything: a
+    /// request's [`Request::quirk`].
+    pub const fn quirk(&self) -> Option<super::Quirk> {
+        match self {
+            MessageBuf::Request(request) => request.quirk(),
+            MessageBuf::Response(_) => None,
+        }
+    }
+}
 
 /// getBlocks with sigmap 0, which [`Request`]'s own encoding refuses.
 struct ZeroSigmap {

@@ -128,6 +128,7 @@ mod error;
 mod features;
 pub mod framing;
 mod pair;
+mod quirk;
 mod request;
 mod response;
 #[cfg(feature = "serde")]
@@ -149,6 +150,7 @@ pub use framing::{Both, Device, Framing, Host, Side};
 #[deprecated(since = "0.2.0", note = "renamed to `Both` (`robowire::side::Both`)")]
 pub type Any = Both;
 pub use pair::{PairError, ProgSwitch, Query};
+pub use quirk::Quirk;
 pub use request::{
     ChangeProg, GetBlocks, GetFeatures, GetFps, GetResolution, GetRgb, GetVersion, ProgName,
     Request, ReverseVector, SetCameraBrightness, SetDefaultTurn, SetLamp, SetLed, SetMode,

@@ -30,6 +30,7 @@ use super::features::{
     Element, Features, FeaturesBuf, Intersection, IntersectionLine, Section, FTYPE_BARCODE,
     FTYPE_INTERSECTION, FTYPE_VECTOR, INTERSECTION_SLOTS,
 };
+use super::quirk::Quirk;
 use super::request::{
     ChangeProg, GetBlocks, GetFeatures, GetFps, GetResolution, GetRgb, GetVersion, ProgName,
     Request, ReverseVector, SetCameraBrightness, SetDefaultTurn, SetLamp, SetLed, SetMode,
@@ -128,6 +129,10 @@ fn serialize_request<S: Serializer>(
             map.serialize_entry("y", &y)?;
             map.serialize_entry("saturate", &saturate)?;
         }
+    }
+    // What the device refuses is marked: the marker lets the line encode.
+    if let Some(quirk) = request.quirk() {
+        map.serialize_entry("quirk", quirk.name())?;
     }
     map.end()
 }
@@ -570,9 +575,26 @@ fn bytes_of(value: &Value, name: &str) -> Result<Vec<u8>, String> {
 fn read_message(value: &Value) -> Result<(Option<Form>, MessageBuf), String> {
     let mut top = Obj::top(value, "a Pixy2 message")?;
     let kind = top.fields.string("type")?;
+    let quirk = match top.fields.optional("quirk") {
+        None => None,
+        Some(quirk) => Some(
+            Quirk::ALL
+                .into_iter()
+                .find(|q| quirk.as_str() == Some(q.name()))
+                .ok_or_else(|| format!("field `quirk` must be sigmap_zero, found {quirk}"))?,
+        ),
+    };
     // Type names are unique across the two directions.
     let message = if Request::NAMES.contains(&kind) {
-        MessageBuf::Request(read_request(kind, &mut top)?)
+        let request = read_request(kind, &mut top, quirk)?;
+        if quirk.is_some() && request.quirk() != quirk {
+            return Err(format!(
+                "the line says \"quirk\", but the device takes this {kind}: leave `quirk` out"
+            ));
+        }
+        MessageBuf::Request(request)
+    } else if quirk.is_some() {
+        return Err(format!("field `quirk` is for requests, not {kind}"));
     } else {
         MessageBuf::Response(read_response(kind, &mut top)?)
     };
@@ -592,13 +614,15 @@ fn read_message(value: &Value) -> Result<(Option<Form>, MessageBuf), String> {
         MessageBuf::Response(_) => Form::Checksum,
     };
     let mut out = [0u8; MAX_FRAME_LEN];
+    // A refused request got here only marked, and so asked for.
     Envelope::new(form.unwrap_or(default), message)
+        .even_if_refused()
         .encode(&mut out)
         .map_err(|e| e.to_string())?;
     Ok((form, message))
 }
 
-fn read_request(kind: &str, f: &mut Obj<'_>) -> Result<Request, String> {
+fn read_request(kind: &str, f: &mut Obj<'_>, quirk: Option<Quirk>) -> Result<Request, String> {
     Ok(match kind {
         "change_prog" => {
             let max = DEVICE_MAX_PAYLOAD;
@@ -645,9 +669,17 @@ fn read_request(kind: &str, f: &mut Obj<'_>) -> Result<Request, String> {
         "get_fps" => Request::GetFps(GetFps),
         "get_blocks" => {
             let sigmap = f.value("sigmap")?;
-            let sigmap = read_int(sigmap, 1, 255)
-                .map_err(|e| format!("field `sigmap` {e} (the device refuses 0 with ERROR -3)"))?
-                as u8;
+            let sigmap = if quirk == Some(Quirk::SigmapZero) {
+                read_int(sigmap, 0, 255).map_err(|e| format!("field `sigmap` {e}"))?
+            } else {
+                read_int(sigmap, 1, 255).map_err(|e| {
+                    format!(
+                        "field `sigmap` {e} (the device refuses 0 with ERROR -3; decode marks \
+                         such a request \"quirk\":\"sigmap_zero\": add that to the line to \
+                         encode it anyway)"
+                    )
+                })?
+            } as u8;
             Request::GetBlocks(GetBlocks {
                 sigmap,
                 max_blocks: f.u8("max_blocks")?,

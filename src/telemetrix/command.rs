@@ -515,6 +515,17 @@ impl<'a> Command<'a> {
     /// Encode this command for `dialect` into the front of `out`; returns the
     /// frame length. Nothing is written on error.
     pub fn encode_in(&self, dialect: Dialect, out: &mut [u8]) -> Result<usize, EncodeError> {
+        self.encode_checked(dialect, out, false)
+    }
+
+    /// [`encode_in`](Self::encode_in), which with `even_if_refused` also
+    /// emits a frame that has a quirk.
+    pub(crate) fn encode_checked(
+        &self,
+        dialect: Dialect,
+        out: &mut [u8],
+        even_if_refused: bool,
+    ) -> Result<usize, EncodeError> {
         self.check_dialect(dialect)?;
         self.check_sizes()?;
         let n = self.encoded_len_in(dialect);
@@ -534,8 +545,9 @@ impl<'a> Command<'a> {
         parse_command(dialect, frame).map_err(Error::into_encode_error)?;
         // ... nor anything it flags: those frames are a real host's, never
         // what robowire sends.
-        if let Some(quirk) = command_quirk(dialect, frame) {
-            return Err(quirk.into_encode_error());
+        match command_quirk(dialect, frame) {
+            Some(quirk) if !even_if_refused => return Err(quirk.into_encode_error()),
+            _ => {}
         }
         if let Some(dst) = out.get_mut(..n) {
             dst.copy_from_slice(frame);
@@ -941,10 +953,14 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
             // the firmware indexes them as pin - 26: accepted, and flagged as
             // a quirk.
             let digital_ok = pin < PIN_COUNT;
+            // Mirte 1.2's and upstream 1.1's clients send an analog pin's
+            // GPIO number (26..=30) unchecked where their firmware takes an
+            // ADC number: accepted as sent, and flagged as a quirk.
+            let analog_ok = analog_pin_ok(Dialect::Mirte13, pin) || analog_pin_ok(dialect, pin);
             let m = match kind {
                 0 if pin == 0 => ModifyReporting::DisableAll,
-                1 if analog_pin_ok(dialect, pin) => ModifyReporting::EnableAnalog { pin },
-                3 if analog_pin_ok(dialect, pin) => ModifyReporting::DisableAnalog { pin },
+                1 if analog_ok => ModifyReporting::EnableAnalog { pin },
+                3 if analog_ok => ModifyReporting::DisableAnalog { pin },
                 2 if digital_ok => ModifyReporting::EnableDigital { pin },
                 4 if digital_ok => ModifyReporting::DisableDigital { pin },
                 0..=4 => {

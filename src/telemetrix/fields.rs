@@ -12,6 +12,7 @@ use super::module::{
     Pca9685Channel, Pca9685Command, RelayCommand, ServoMove, ServoPosition, ServoPositions,
     Ssd1306Command, Ssd1306Done,
 };
+use super::quirk::Quirk;
 use super::report::{Report, Sonar, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
 use super::sensor::{SensorNew, SensorReading, SensorType};
 
@@ -191,8 +192,28 @@ impl Visit for Message<'_> {
     }
 }
 
-/// After a frame's fields: `quirk`, when the frame has one.
-fn quirk(w: &mut W<'_>, quirk: Option<super::quirk::Quirk>) {
+/// A frame's fields (written by `fields`), then `quirk` when the frame has
+/// one. Where the message does not hold all of a quirky frame's bytes, the
+/// line gives them as they are on the wire, so that it encodes back to the
+/// frame: a level byte above 1 as `value`, an encoder type 3 as `kind`, the
+/// bytes after PWM_WRITE's last whole triple as `trailing`.
+fn with_quirk(w: &mut W<'_>, frame: &[u8], quirk: Option<Quirk>, fields: &dyn Fn(&mut W<'_>)) {
+    // The field a quirk replaces by its wire byte, and that byte.
+    let replaced = match (quirk, frame) {
+        (Some(Quirk::LevelNotBinary), &[_, _, _, level]) => Some(("value", level)),
+        (Some(Quirk::EncoderTypeNot1Or2), &[_, _, kind, ..]) => Some(("kind", kind)),
+        _ => None,
+    };
+    match replaced {
+        Some((key, byte)) => fields(&mut W(&mut |k, v| {
+            (w.0)(k, if k == key { V::U(byte.into()) } else { v });
+        })),
+        None => fields(w),
+    }
+    if quirk == Some(Quirk::PwmTrailingBytes) {
+        let payload = frame.get(2..).unwrap_or(&[]);
+        w.bytes("trailing", &payload[payload.len() / 3 * 3..]);
+    }
     if let Some(q) = quirk {
         w.s("quirk", q.name());
     }
@@ -200,15 +221,13 @@ fn quirk(w: &mut W<'_>, quirk: Option<super::quirk::Quirk>) {
 
 impl Visit for CommandBuf {
     fn visit(&self, w: &mut W<'_>) {
-        self.message().visit(w);
-        quirk(w, self.quirk());
+        with_quirk(w, self.frame(), self.quirk(), &|w| self.message().visit(w));
     }
 }
 
 impl Visit for ReportBuf {
     fn visit(&self, w: &mut W<'_>) {
-        self.message().visit(w);
-        quirk(w, self.quirk());
+        with_quirk(w, self.frame(), self.quirk(), &|w| self.message().visit(w));
     }
 }
 
@@ -218,7 +237,7 @@ impl Visit for MessageBuf {
             Message::Command(c) => c.name(),
             Message::Report(r) => r.name(),
         });
-        match self.message() {
+        with_quirk(w, self.frame(), self.quirk(), &|w| match self.message() {
             Message::Command(command) => CommandView {
                 command: &command,
                 also,
@@ -230,8 +249,7 @@ impl Visit for MessageBuf {
                 also,
             }
             .visit(w),
-        }
-        quirk(w, self.quirk());
+        });
     }
 }
 

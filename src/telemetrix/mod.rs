@@ -64,12 +64,17 @@
 //! the firmware reads them and flags them with a [`Quirk`]
 //! ([`CommandBuf::quirk`], [`ReportBuf::quirk`], [`MessageBuf::quirk`]; the
 //! owned forms keep the frame's own bytes, and the JSON-lines schema adds
-//! `"quirk":"<name>"` after the fields); the encoder refuses them as before:
+//! `"quirk":"<name>"` after the fields); the encoder refuses them unless
+//! asked with `even_if_refused()` ([`EvenIfRefused`]), and a JSON line reads
+//! back to its quirky frame only when it carries the marker:
 //! MODIFY_REPORTING types 2 and 4 in mirte 1.3 (`03 04 04 02`, sent by the
 //! mirte Python client), DIGITAL_WRITE levels other than 0/1 (read as high),
 //! PWM_WRITE with 1 or 2 bytes after the last whole pin (ignored), ENCODER_NEW
-//! type 3 (read as quadrature), and the SSD1306 "disabled" report echoing a
-//! request subtype above 3 (`05 22 03 03 05 FE`). On a clean stream of every
+//! type 3 (read as quadrature), the SSD1306 "disabled" report echoing a
+//! request subtype above 3 (`05 22 03 03 05 FE`), and in mirte 1.2 and
+//! upstream 1.1 MODIFY_REPORTING of an analog pin by its GPIO number
+//! (`03 04 01 1A`, sent by those dialects' Python clients); the table and
+//! the rules the spec lacks are in [`Quirk`]. On a clean stream of every
 //! mirte 1.3 command with full payloads, 10,047 frames, that took the
 //! decoder from 284 lost and 38 false frames to none, at any chunking.
 //!
@@ -233,7 +238,7 @@ pub use module::{
     ServoPositions, Ssd1306Command, Ssd1306Done, MODULE_INIT_MAX,
 };
 pub use names::UnknownName;
-pub use quirk::Quirk;
+pub use quirk::{EvenIfRefused, Quirk};
 pub use report::{Report, Sonar, SonarReading, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
 pub use sensor::{SensorNew, SensorReading, SensorType};
 pub use wire::{

@@ -9,6 +9,7 @@ use super::buf::Message;
 use super::command::{Command, EncoderKind, ModifyReporting, PinMode, Pull};
 use super::dialect::Dialect;
 use super::module::ModuleType;
+use super::quirk::Quirk;
 use super::report::Report;
 use super::sensor::SensorType;
 
@@ -101,6 +102,22 @@ named!(
     ["single", "quadrature"],
     "single, quadrature",
     [EncoderKind::Single, EncoderKind::Quadrature]
+);
+
+named!(
+    Quirk,
+    "quirk",
+    [
+        "digital_reporting_pin_minus_26",
+        "level_not_binary",
+        "pwm_trailing_bytes",
+        "encoder_type_not_1_or_2",
+        "echoed_request_byte",
+        "analog_reporting_pin_not_adc",
+    ],
+    "digital_reporting_pin_minus_26, level_not_binary, pwm_trailing_bytes, \
+     encoder_type_not_1_or_2, echoed_request_byte, analog_reporting_pin_not_adc",
+    Quirk::ALL
 );
 
 impl ModuleType {

@@ -2,9 +2,12 @@
 //! frame (refusing it would lose it and, without a checksum, the frames
 //! around it) and flags it; the encoder refuses it.
 
+use super::command::Command;
 use super::dialect::Dialect;
-use super::wire::{command_id as cid, report_id as rid};
-use crate::EncodeError;
+use super::report::Report;
+use super::wire::{command_id as cid, report_id as rid, MAX_COMMAND_FRAME, MAX_REPORT_FRAME};
+use super::InDialect;
+use crate::{Encode, EncodeError};
 
 /// Something dubious in a frame that a real host or Pico sends, which the
 /// decoder accepts and flags, and the encoder refuses (spec §4, §4.2, §7.3).
@@ -16,6 +19,28 @@ use crate::EncodeError;
 /// [`ReportBuf::quirk`](super::ReportBuf::quirk),
 /// [`MessageBuf::quirk`](super::MessageBuf::quirk)), which the JSON-lines
 /// schema writes as `"quirk":"<name>"` after the message's fields.
+///
+/// | quirk | frame (example) | dialects | sent by | the firmware |
+/// |---|---|---|---|---|
+/// | [`DigitalReportingPinMinus26`](Quirk::DigitalReportingPinMinus26) | `03 04 04 02` | mirte 1.3 | the mirte Python client | indexes pin − 26 (spec §4.2) |
+/// | [`LevelNotBinary`](Quirk::LevelNotBinary) | `03 02 05 02` | all | a host writing a truthy byte | drives the pin high |
+/// | [`PwmTrailingBytes`](Quirk::PwmTrailingBytes) | `05 03 01 00 10 07` | mirte 1.3 | a host with a short last triple | takes `(LEN − 1) / 3` pins |
+/// | [`EncoderTypeNot1Or2`](Quirk::EncoderTypeNot1Or2) | `05 1e 03 02 03 00` | mirte 1.3, 1.2 | a host | sets up a quadrature encoder |
+/// | [`EchoedRequestByte`](Quirk::EchoedRequestByte) | `05 22 03 03 05 fe` (report) | mirte 1.3 | the Pico | echoes the subtype it did not know |
+/// | [`AnalogReportingPinNotAdc`](Quirk::AnalogReportingPinNotAdc) | `03 04 01 1a` | mirte 1.2, upstream 1.1 | their Python clients (`enable_analog_reporting(26)`, unchecked) | indexes its 5 analog pins with the byte |
+///
+/// The last rule is not in the spec, which gives those dialects' analog
+/// pins as ADC numbers 0..=4 (§10). Their firmware's MODIFY_REPORTING
+/// handler takes the type and the pin byte and, for types 1 and 3, sets the
+/// reporting flag of `analog_pins[pin]` without a range check; for types 2
+/// and 4 it indexes the digital pins directly (no `− 26`); type 0 ignores
+/// the pin. Their clients send the pin byte they are given, unchecked, so
+/// the decoder takes an analog pin by its ADC number (no quirk) or by its
+/// GPIO number 26..=30 (the numbering of the Pico's pinout and of mirte
+/// 1.3; flagged), digital pins below 30, and type 0 with pin 0 (what every
+/// client sends); other pin bytes stay rejected, as everywhere in the
+/// decoder. SET_PIN_MODE analog needs no such rule: those clients check its
+/// ADC number (0..=4) before sending.
 ///
 /// ```
 /// use robowire::telemetrix::{CommandBuf, Dialect, Quirk};
@@ -46,28 +71,23 @@ pub enum Quirk {
     /// request: the SSD1306 "display disabled" reply (`request_sub, 254`)
     /// to a MODULE_DATA whose subtype is not 0..=3.
     EchoedRequestByte,
+    /// MODIFY_REPORTING type 1 or 3 (enable or disable an analog pin) in
+    /// mirte 1.2 or upstream 1.1 naming the pin by its GPIO number
+    /// (26..=30) where that firmware takes an ADC number (0..=4): it indexes
+    /// its five analog pins with the byte, out of range.
+    AnalogReportingPinNotAdc,
 }
 
 impl Quirk {
-    /// Every quirk.
-    pub const ALL: [Quirk; 5] = [
+    /// Every quirk, in the order of [`Quirk::NAMES`].
+    pub const ALL: [Quirk; 6] = [
         Quirk::DigitalReportingPinMinus26,
         Quirk::LevelNotBinary,
         Quirk::PwmTrailingBytes,
         Quirk::EncoderTypeNot1Or2,
         Quirk::EchoedRequestByte,
+        Quirk::AnalogReportingPinNotAdc,
     ];
-
-    /// The name the JSON-lines schema writes (snake case).
-    pub const fn name(self) -> &'static str {
-        match self {
-            Quirk::DigitalReportingPinMinus26 => "digital_reporting_pin_minus_26",
-            Quirk::LevelNotBinary => "level_not_binary",
-            Quirk::PwmTrailingBytes => "pwm_trailing_bytes",
-            Quirk::EncoderTypeNot1Or2 => "encoder_type_not_1_or_2",
-            Quirk::EchoedRequestByte => "echoed_request_byte",
-        }
-    }
 
     /// The encode error of a message whose frame would have this quirk:
     /// the one the encoder gave before the decoder accepted such frames.
@@ -82,13 +102,8 @@ impl Quirk {
             Quirk::EchoedRequestByte => EncodeError::OutOfRange {
                 field: "request_sub",
             },
+            Quirk::AnalogReportingPinNotAdc => EncodeError::OutOfRange { field: "pin" },
         }
-    }
-}
-
-impl core::fmt::Display for Quirk {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(self.name())
     }
 }
 
@@ -98,6 +113,9 @@ pub(crate) fn command_quirk(dialect: Dialect, frame: &[u8]) -> Option<Quirk> {
     match *frame {
         [3, cid::MODIFY_REPORTING, 2 | 4, _] if dialect == Dialect::Mirte13 => {
             Some(Quirk::DigitalReportingPinMinus26)
+        }
+        [3, cid::MODIFY_REPORTING, 1 | 3, pin] if dialect != Dialect::Mirte13 && pin > 4 => {
+            Some(Quirk::AnalogReportingPinNotAdc)
         }
         [3, cid::DIGITAL_WRITE, _, value] if value > 1 => Some(Quirk::LevelNotBinary),
         [len, cid::PWM_WRITE, ..] if len.wrapping_sub(1) % 3 != 0 => Some(Quirk::PwmTrailingBytes),
@@ -117,5 +135,88 @@ pub(crate) fn report_quirk(dialect: Dialect, frame: &[u8]) -> Option<Quirk> {
             Some(Quirk::EchoedRequestByte)
         }
         _ => None,
+    }
+}
+
+/// A message to be encoded even if its frame has a [`Quirk`]: the frame a
+/// real peer sends that the encoder otherwise refuses (`03 04 04 02` in
+/// mirte 1.3, `03 04 01 1A` in mirte 1.2). Made by `even_if_refused` on a
+/// [`Command`], a [`Report`] (mirte 1.3) or an [`InDialect`]; the shape of
+/// [`pixy2::Envelope::even_if_refused`](crate::pixy2::Envelope::even_if_refused).
+/// For testing a device, a host or a simulator with what real peers send.
+///
+/// Everything else is checked as [`Encode`] checks it: the frame must be
+/// one the decoder accepts. A quirk that a message cannot express (a level
+/// byte 2 is `value: true`, PWM trailing bytes and an encoder type 3 are
+/// not in the message) encodes to the plain frame; the owned forms a
+/// decoder yields keep the frame's own bytes, and the JSON-lines schema
+/// writes those bytes (see the `robowire` tool's docs).
+///
+/// ```
+/// use robowire::telemetrix::{Command, Dialect, ModifyReporting};
+/// use robowire::Encode;
+///
+/// let enable = Command::ModifyReporting(ModifyReporting::EnableAnalog { pin: 26 });
+/// let mut out = [0u8; 4];
+/// assert!(enable.in_dialect(Dialect::Mirte12).encode(&mut out).is_err());
+/// let n = enable.in_dialect(Dialect::Mirte12).even_if_refused().encode(&mut out)?;
+/// assert_eq!(&out[..n], &[0x03, 0x04, 0x01, 0x1a]);
+/// # Ok::<(), robowire::EncodeError>(())
+/// ```
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Debug, Clone, Copy)]
+pub struct EvenIfRefused<'m, M> {
+    message: &'m M,
+    dialect: Dialect,
+}
+
+impl<'m, M> InDialect<'m, M> {
+    /// This message, encoded for its dialect even if its frame has a
+    /// [`Quirk`].
+    pub const fn even_if_refused(self) -> EvenIfRefused<'m, M> {
+        EvenIfRefused {
+            message: self.message,
+            dialect: self.dialect,
+        }
+    }
+}
+
+impl<'a> Command<'a> {
+    /// This command, encoded for mirte 1.3 even if its frame has a [`Quirk`]
+    /// (see [`EvenIfRefused`]).
+    pub const fn even_if_refused(&self) -> EvenIfRefused<'_, Self> {
+        self.in_dialect(Dialect::Mirte13).even_if_refused()
+    }
+}
+
+impl<'a> Report<'a> {
+    /// This report, encoded for mirte 1.3 even if its frame has a [`Quirk`]
+    /// (see [`EvenIfRefused`]).
+    pub const fn even_if_refused(&self) -> EvenIfRefused<'_, Self> {
+        self.in_dialect(Dialect::Mirte13).even_if_refused()
+    }
+}
+
+impl Encode for EvenIfRefused<'_, Command<'_>> {
+    const MAX_LEN: usize = MAX_COMMAND_FRAME;
+
+    fn encoded_len(&self) -> usize {
+        self.message.encoded_len_in(self.dialect)
+    }
+
+    fn encode(&self, out: &mut [u8]) -> Result<usize, EncodeError> {
+        self.message.encode_checked(self.dialect, out, true)
+    }
+}
+
+impl Encode for EvenIfRefused<'_, Report<'_>> {
+    const MAX_LEN: usize = MAX_REPORT_FRAME;
+
+    fn encoded_len(&self) -> usize {
+        self.message.encoded_len_in(self.dialect)
+    }
+
+    fn encode(&self, out: &mut [u8]) -> Result<usize, EncodeError> {
+        self.message.encode_checked(self.dialect, out, true)
     }
 }

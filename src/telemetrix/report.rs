@@ -497,6 +497,17 @@ impl Report<'_> {
     /// Encode this report for `dialect` into the front of `out`; returns the
     /// frame length. Nothing is written on error.
     pub fn encode_in(&self, dialect: Dialect, out: &mut [u8]) -> Result<usize, EncodeError> {
+        self.encode_checked(dialect, out, false)
+    }
+
+    /// [`encode_in`](Self::encode_in), which with `even_if_refused` also
+    /// emits a frame that has a quirk.
+    pub(crate) fn encode_checked(
+        &self,
+        dialect: Dialect,
+        out: &mut [u8],
+        even_if_refused: bool,
+    ) -> Result<usize, EncodeError> {
         self.check_dialect(dialect)?;
         let n = self.encoded_len_in(dialect);
         if n > MAX_REPORT_FRAME {
@@ -514,8 +525,9 @@ impl Report<'_> {
         let lenient = matches!(self, Report::Unknown { .. });
         parse_report_with(dialect, lenient, frame).map_err(Error::into_encode_error)?;
         // ... nor anything it flags.
-        if let Some(quirk) = report_quirk(dialect, frame) {
-            return Err(quirk.into_encode_error());
+        match report_quirk(dialect, frame) {
+            Some(quirk) if !even_if_refused => return Err(quirk.into_encode_error()),
+            _ => {}
         }
         if let Some(dst) = out.get_mut(..n) {
             dst.copy_from_slice(frame);

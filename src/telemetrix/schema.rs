@@ -25,10 +25,12 @@ use super::module::{
     Pca9685Channel, Pca9685Command, Pca9685Config, RelayCommand, ServoMove, ServoPositions,
     Ssd1306Command, Ssd1306Done,
 };
+use super::quirk::Quirk;
 use super::report::{Report, Sonar, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
 use super::sensor::{SensorNew, SensorReading, SensorType};
 use super::wire::{COMMAND_PAYLOAD_MAX, MAX_REPORT_FRAME, PIN_COUNT};
 use crate::serde_support::{read_f32, read_int, serialize_f32, unknown_type, Fields, Value};
+use crate::Encode;
 
 // ---------------------------------------------------------------- Serialize
 
@@ -193,8 +195,41 @@ enum Want {
     Any,
 }
 
-/// Read one JSON object of the schema and encode it for `dialect`.
+/// Read one JSON object of the schema and encode it for `dialect`. A line
+/// without `quirk` whose frame would have one is refused, and the error
+/// names the quirk that allows it.
 fn read_line(value: &Value, dialect: Dialect, want: Want) -> Result<MessageBuf, String> {
+    read_marked(value, dialect, want).map_err(|error| {
+        let Some(map) = value.as_object().filter(|map| !map.contains_key("quirk")) else {
+            return error;
+        };
+        let marked = |quirk: Quirk| {
+            let mut map = map.clone();
+            map.insert("quirk".into(), Value::Str(quirk.name().into()));
+            read_marked(&Value::Map(map), dialect, want).is_ok()
+        };
+        match Quirk::ALL.into_iter().find(|&quirk| marked(quirk)) {
+            Some(quirk) => format!(
+                "{error} (a frame a real peer sends, which decode marks \"quirk\":\"{quirk}\": \
+                 add that to the line to encode it anyway)"
+            ),
+            None => error,
+        }
+    })
+}
+
+/// What a line with a `quirk` says beyond its message: the quirk, and the
+/// bytes of the frame the message does not hold (see `fields::with_quirk`).
+struct Raw {
+    quirk: Option<Quirk>,
+    /// A byte of the frame, by index, as the line gives it.
+    byte: Option<(usize, u8)>,
+    /// Bytes after the message's payload.
+    trailing: Vec<u8>,
+}
+
+/// [`read_line`] without the hint.
+fn read_marked(value: &Value, dialect: Dialect, want: Want) -> Result<MessageBuf, String> {
     let map = value
         .as_object()
         .ok_or_else(|| format!("expected a JSON object, found {value}"))?;
@@ -212,23 +247,48 @@ fn read_line(value: &Value, dialect: Dialect, want: Want) -> Result<MessageBuf, 
             ));
         }
     }
-    // A frame flagged with a quirk came from a real peer; the encoder
-    // refuses to send one.
-    if let Some(quirk) = fields.optional("quirk") {
-        return Err(format!(
-            "cannot encode {kind}: the decoder flagged its frame `{}`, which the encoder refuses",
-            quirk.as_str().unwrap_or("?")
-        ));
-    }
+    // A frame flagged with a quirk came from a real peer: the marker is the
+    // opt-in to encode it.
+    let quirk = match fields.optional("quirk") {
+        None => None,
+        Some(quirk) => Some(quirk.as_str().and_then(|q| q.parse().ok()).ok_or_else(|| {
+            format!(
+                "field `quirk` must be one of {}, found {quirk}",
+                Quirk::NAMES.join(", ")
+            )
+        })?),
+    };
+    let mut raw = Raw {
+        quirk,
+        byte: None,
+        trailing: Vec::new(),
+    };
     let mut bytes = Vec::new();
     let encoded = if Command::NAMES.contains(&kind) && want != Want::Reports {
-        let command = read_command(kind, &mut fields, dialect, &mut bytes)?;
+        let command = read_command(kind, &mut fields, dialect, &mut bytes, &mut raw)?;
         fields.finish(&format!("for type {kind}"))?;
-        command.to_buf_in(dialect).map(MessageBuf::from)
+        match quirk {
+            None => command
+                .to_buf_in(dialect)
+                .map(MessageBuf::from)
+                .map_err(|e| e.to_string()),
+            Some(_) => encode_marked(command.in_dialect(dialect).even_if_refused(), &raw, |f| {
+                CommandBuf::parse_in(f, dialect).map(Into::into)
+            }),
+        }
     } else if Report::NAMES.contains(&kind) && want != Want::Commands {
         let report = read_report(kind, &mut fields, dialect, &mut bytes)?;
         fields.finish(&format!("for type {kind}"))?;
-        report.to_buf_in(dialect).map(MessageBuf::from)
+        let lenient = matches!(report, Report::Unknown { .. });
+        match quirk {
+            None => report
+                .to_buf_in(dialect)
+                .map(MessageBuf::from)
+                .map_err(|e| e.to_string()),
+            Some(_) => encode_marked(report.in_dialect(dialect).even_if_refused(), &raw, |f| {
+                ReportBuf::parse_in(f, dialect, lenient).map(Into::into)
+            }),
+        }
     } else {
         let names = match want {
             Want::Commands => Command::NAMES,
@@ -237,7 +297,65 @@ fn read_line(value: &Value, dialect: Dialect, want: Want) -> Result<MessageBuf, 
         };
         return Err(unknown_type(kind, names));
     };
-    encoded.map_err(|e| format!("cannot encode {kind} for {dialect}: {e}"))
+    let encoded = encoded.map_err(|e| format!("cannot encode {kind} for {dialect}: {e}"))?;
+    check_marked(encoded, quirk, dialect)
+}
+
+/// The frame of a marked line: `encoder`'s, with the bytes the line gives
+/// put in (see [`Raw::apply`]), as the decoder parses it.
+fn encode_marked<E: Encode>(
+    encoder: E,
+    raw: &Raw,
+    parse: impl FnOnce(&[u8]) -> Result<MessageBuf, Error>,
+) -> Result<MessageBuf, String> {
+    let mut out = [0u8; MAX_REPORT_FRAME];
+    let n = encoder.encode(&mut out).map_err(|e| e.to_string())?;
+    parse(raw.apply(&mut out, n)).map_err(|e| e.to_string())
+}
+
+/// `encoded`, if its frame has the quirk the line says (none or one).
+fn check_marked(
+    encoded: MessageBuf,
+    quirk: Option<Quirk>,
+    dialect: Dialect,
+) -> Result<MessageBuf, String> {
+    let found = encoded.quirk();
+    match (quirk, found) {
+        (None, _) => Ok(encoded),
+        (Some(said), Some(found)) if said == found => Ok(encoded),
+        (Some(said), Some(other)) => Err(format!(
+            "the line says \"quirk\":\"{said}\", but its frame for {dialect} has `{other}`"
+        )),
+        (Some(said), None) => Err(format!(
+            "the line says \"quirk\":\"{said}\", but its frame for {dialect} has no quirk: \
+             leave `quirk` out"
+        )),
+    }
+}
+
+impl Raw {
+    /// The frame of `out[..n]` with the line's own bytes put in (`LEN`
+    /// counts the trailing ones).
+    fn apply<'o>(&self, out: &'o mut [u8], n: usize) -> &'o [u8] {
+        if let Some((at, byte)) = self.byte {
+            if let Some(slot) = out.get_mut(at).filter(|_| at < n) {
+                *slot = byte;
+            }
+        }
+        let end = (n + self.trailing.len()).min(out.len());
+        if let Some(dst) = out.get_mut(n..end) {
+            dst.copy_from_slice(&self.trailing[..end - n]);
+        }
+        if let Some(len) = out.first_mut() {
+            *len = len.wrapping_add(self.trailing.len() as u8);
+        }
+        &out[..end]
+    }
+
+    /// Whether the line's quirk is `quirk`.
+    fn is(&self, quirk: Quirk) -> bool {
+        self.quirk == Some(quirk)
+    }
 }
 
 fn read_as<'de, D: Deserializer<'de>>(
@@ -353,6 +471,17 @@ fn analog_pin(f: &mut Fields<'_>, dialect: Dialect) -> Result<u8, String> {
     match dialect {
         Dialect::Mirte13 => ranged(f, "pin", 26, 30),
         Dialect::Mirte12 | Dialect::Upstream11 => ranged(f, "pin", 0, 4),
+    }
+}
+
+/// The pin of MODIFY_REPORTING's analog types: [`analog_pin`], or in mirte
+/// 1.2 and upstream 1.1 with the quirk that allows it the GPIO number
+/// 26..=30 those dialects' clients send.
+fn reporting_analog_pin(f: &mut Fields<'_>, dialect: Dialect, raw: &Raw) -> Result<u8, String> {
+    if raw.is(Quirk::AnalogReportingPinNotAdc) {
+        ranged(f, "pin", 26, 30)
+    } else {
+        analog_pin(f, dialect)
     }
 }
 
@@ -508,6 +637,7 @@ fn read_command<'b>(
     f: &mut Fields<'_>,
     dialect: Dialect,
     buf: &'b mut Vec<u8>,
+    raw: &mut Raw,
 ) -> Result<Command<'b>, String> {
     let upstream = dialect == Dialect::Upstream11;
     Ok(match kind {
@@ -537,9 +667,20 @@ fn read_command<'b>(
         }
         "digital_write" => Command::DigitalWrite {
             pin: pin_(f, "pin")?,
-            value: digital_value(f)?,
+            // The level byte as sent, which the firmware reads as high
+            // unless it is 0.
+            value: if raw.is(Quirk::LevelNotBinary) {
+                let level = u8_(f, "value")?;
+                raw.byte = Some((3, level));
+                level != 0
+            } else {
+                digital_value(f)?
+            },
         },
         "pwm_write" => {
+            if raw.is(Quirk::PwmTrailingBytes) {
+                raw.trailing = bytes(f, "trailing")?;
+            }
             let pins = objects(f, "pins", |p| {
                 Ok(PwmPin {
                     pin: pin_(p, "pin")?,
@@ -556,13 +697,13 @@ fn read_command<'b>(
             Command::ModifyReporting(match action {
                 0 => ModifyReporting::DisableAll,
                 1 => ModifyReporting::EnableAnalog {
-                    pin: analog_pin(f, dialect)?,
+                    pin: reporting_analog_pin(f, dialect, raw)?,
                 },
                 2 => ModifyReporting::EnableDigital {
                     pin: pin_(f, "pin")?,
                 },
                 3 => ModifyReporting::DisableAnalog {
-                    pin: analog_pin(f, dialect)?,
+                    pin: reporting_analog_pin(f, dialect, raw)?,
                 },
                 _ => ModifyReporting::DisableDigital {
                     pin: pin_(f, "pin")?,
@@ -683,9 +824,21 @@ fn read_command<'b>(
             delay_ms: u8_(f, "delay_ms")?,
         },
         "encoder_new" => Command::EncoderNew {
-            kind: match name(f, "kind", EncoderKind::NAMES)? {
-                0 => EncoderKind::Single,
-                _ => EncoderKind::Quadrature,
+            kind: if raw.is(Quirk::EncoderTypeNot1Or2) {
+                // The type byte as sent, which the firmware reads as
+                // quadrature unless it is 1.
+                let kind = u8_(f, "kind")?;
+                raw.byte = Some((2, kind));
+                if kind == 1 {
+                    EncoderKind::Single
+                } else {
+                    EncoderKind::Quadrature
+                }
+            } else {
+                match name(f, "kind", EncoderKind::NAMES)? {
+                    0 => EncoderKind::Single,
+                    _ => EncoderKind::Quadrature,
+                }
             },
             pin_a: pin_(f, "pin_a")?,
             pin_b: pin_(f, "pin_b")?,

@@ -73,7 +73,9 @@ prints only when they are not 0 (reserved bytes, unused_slots) or not 33
 (change_prog payload_len) may be left out. Blank lines and diagnostic events
 (objects with error and no type) are skipped. A malformed line or out-of-range
 value is reported with its line number and nothing is written for it; the other
-lines are still encoded and the exit status is 2.
+lines are still encoded and the exit status is 2. A request the device refuses
+(getBlocks with sigmap 0, which the official host sends) is encoded only from a
+line that carries \"quirk\":\"sigmap_zero\", as decode marks it.
 
 Examples:
   robowire decode pixy2 capture.bin | robowire encode pixy2 > same-frames.bin
@@ -162,7 +164,17 @@ impl Schema for Pixy2 {
 
     fn encode(&self, line: &Self::Line, frame: &mut Vec<u8>) -> Result<(), String> {
         let mut out = [0u8; MAX_FRAME_LEN];
-        let n = line.encode(&mut out).map_err(|e| e.to_string())?;
+        let n = match line.body {
+            // A request the device refuses reads only from a line that
+            // carries its `quirk`: the marker asked for it.
+            MessageBuf::Request(request) if request.quirk().is_some() => {
+                Envelope::new(line.form, request)
+                    .even_if_refused()
+                    .encode(&mut out)
+            }
+            _ => line.encode(&mut out),
+        }
+        .map_err(|e| e.to_string())?;
         frame.extend_from_slice(&out[..n]);
         Ok(())
     }

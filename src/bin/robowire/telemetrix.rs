@@ -53,7 +53,9 @@ auto_show, supported, ok, enabled, pulls.up/down) as true/false. Byte counts
 that a byte array already gives are not repeated; read lengths are `n`. A frame
 a real peer sends that robowire would not send (a level byte 2, mirte13's digital
 modify_reporting, ...) is decoded as the firmware reads it and ends with \"quirk\":
-its name; encode refuses such a line.
+its name, after the frame's bytes the message does not hold (a level byte as value,
+an encoder type 3 as kind, PWM trailing bytes as trailing); encode writes such a line
+back to exactly that frame, and refuses the frame from a line without the marker.
 {modes}
   sonar_distance (mirte13): trig, echo (LEN 5 form only), cm: a number or
     \"no_echo\", \"out_of_range\", \"stale\"; mirte12: trig, m, cm; upstream11:
@@ -117,7 +119,9 @@ digital_write and digital_report also take `high` (true/false) for `value` in
 this release. Blank lines and diagnostic events (objects with error and no type)
 are skipped. Frames are encoded for --dialect (the one they were decoded with),
 and the encoder refuses what the firmware would mishandle (unknown ids, LEN over
-30, pins >= 30, counts over the spec's maxima). A malformed line or out-of-range
+30, pins >= 30, counts over the spec's maxima). A line that carries \"quirk\" (a
+real peer's frame, as decode marks it) is encoded to exactly that frame; without
+the marker such a frame is refused, and the error names the quirk to add. A malformed line or out-of-range
 value is reported with its line number and nothing is written for it; the other
 lines are still encoded and the exit status is 2.
 
