@@ -22,8 +22,12 @@ fn capture(name: &str) -> Vec<u8> {
 }
 
 /// Decode `input` with `decode_args`, encode the lines with `encode_args`,
-/// and compare with the decoded frames' own bytes. Returns the lines.
+/// and compare with the decoded frames' own bytes. Returns the lines. Some
+/// decodes read a capture from the other side on purpose, which is mostly
+/// noise: `--allow-noise` keeps their exit status 0, since what is checked
+/// here is that every line printed re-encodes.
 fn round_trip(decode_args: &[&str], encode_args: &[&str], input: &[u8]) -> Vec<Value> {
+    let decode_args = &[decode_args, &["--allow-noise"]].concat()[..];
     let decoded = run(decode_args, input);
     assert_eq!(decoded.code, 0, "{decode_args:?}: {}", decoded.stderr);
     let lines = decoded.json();
