@@ -3,7 +3,9 @@
 //! the end-of-run summary, and the encode loop over JSON lines. A protocol
 //! plugs in by implementing [`Schema`]; it writes no per-message code.
 
+use crate::export::{FormatArgs, Recorder};
 use crate::input::{ByteSource, HexBytes, Input, Lines, RawBytes};
+use crate::port::{EncodePort, LiveArgs, PortSink, PortSource};
 use crate::Failure;
 use clap::Args;
 use robowire::omnitiles::padded_spi_frames;
@@ -53,11 +55,21 @@ pub struct DecodeCommon {
     /// The capture to read; `-` or absent for stdin.
     #[arg(value_name = "INPUT")]
     pub input: Option<PathBuf>,
+    /// Live ports, receive times and saved captures.
+    #[command(flatten)]
+    pub live: LiveArgs,
+    /// The output format and destination.
+    #[command(flatten)]
+    pub format: FormatArgs,
 }
 
 impl DecodeCommon {
-    /// The input, as raw bytes or (with `--hex`) hex text.
+    /// The input, as raw bytes or (with `--hex`) hex text, from a file, stdin
+    /// or (with `--port`) a serial port.
     pub fn source(&self) -> Result<Box<dyn ByteSource>, Failure> {
+        if let Some(device) = &self.live.port {
+            return Ok(Box::new(PortSource::open(device, self.live.baud)?));
+        }
         let input = Input::open(self.input.as_deref())?;
         Ok(if self.hex {
             Box::new(HexBytes::new(input))
@@ -83,6 +95,9 @@ pub struct EncodeCommon {
     /// JSON lines to read; `-` or absent for stdin.
     #[arg(value_name = "INPUT")]
     pub input: Option<PathBuf>,
+    /// A serial port to write the frames to.
+    #[command(flatten)]
+    pub port: EncodePort,
 }
 
 /// Buffered stdout that turns a closed pipe into [`Failure::BrokenPipe`],
@@ -93,6 +108,10 @@ pub struct Output {
     start: Vec<u8>,
     /// How many of the decoded bytes were `00`.
     zeros: u64,
+    /// Times, a saved capture or another format, when a decode asks for them.
+    recorder: Option<Recorder>,
+    /// The serial port an encode writes to instead of stdout.
+    port: Option<BufWriter<PortSink>>,
 }
 
 impl Output {
@@ -102,17 +121,43 @@ impl Output {
             out: BufWriter::with_capacity(64 * 1024, io::stdout().lock()),
             start: Vec::new(),
             zeros: 0,
+            recorder: None,
+            port: None,
         }
     }
 
     /// Write `bytes`.
     pub fn write(&mut self, bytes: &[u8]) -> Result<(), Failure> {
-        self.out.write_all(bytes).map_err(Failure::stdout)
+        match &mut self.port {
+            Some(port) => port.write_all(bytes).map_err(|e| port_failure(port, e)),
+            None => self.out.write_all(bytes).map_err(Failure::stdout),
+        }
     }
 
     /// Write everything still buffered.
     pub fn flush(&mut self) -> Result<(), Failure> {
+        if let Some(recorder) = &mut self.recorder {
+            recorder.flush()?;
+        }
+        if let Some(port) = &mut self.port {
+            port.flush().map_err(|e| port_failure(port, e))?;
+        }
         self.out.flush().map_err(Failure::stdout)
+    }
+
+    /// Complete every output (an MCAP recording's summary, a saved capture)
+    /// and write everything still buffered.
+    pub fn finish(&mut self) -> Result<(), Failure> {
+        let finished = self.recorder.as_mut().map_or(Ok(()), Recorder::finish);
+        let flushed = self.flush();
+        finished.and(flushed)
+    }
+}
+
+fn port_failure(port: &BufWriter<PortSink>, error: io::Error) -> Failure {
+    Failure::Io {
+        context: port.get_ref().name().to_owned(),
+        error,
     }
 }
 
@@ -125,13 +170,15 @@ pub struct Printer<'o> {
 }
 
 impl<'o> Printer<'o> {
-    /// A printer writing to `out`; rejections are printed when `errors`.
-    pub fn new(out: &'o mut Output, errors: bool) -> Self {
-        Printer {
+    /// A printer writing to `out` in the format `common` asks for;
+    /// rejections are printed with `--errors`.
+    pub fn new(out: &'o mut Output, common: &DecodeCommon) -> Result<Self, Failure> {
+        out.recorder = Recorder::new(common)?;
+        Ok(Printer {
             out,
             text: Vec::with_capacity(256),
-            errors,
-        }
+            errors: common.errors,
+        })
     }
 
     /// Print one event.
@@ -139,6 +186,9 @@ impl<'o> Printer<'o> {
         &mut self,
         event: Result<OwnedFrame<M>, Rejected<E>>,
     ) -> Result<(), Failure> {
+        if let Some(recorder) = &mut self.out.recorder {
+            return recorder.event(event, self.errors, &mut self.out.out);
+        }
         let buf = &mut self.text;
         buf.clear();
         let written = match event {
@@ -160,6 +210,9 @@ impl<'o> Printer<'o> {
             .start
             .extend_from_slice(&bytes[..room.min(bytes.len())]);
         self.out.zeros += bytes.iter().filter(|&&b| b == 0).count() as u64;
+        if let Some(recorder) = &mut self.out.recorder {
+            recorder.observe(bytes);
+        }
     }
 
     /// Write out everything printed so far (before waiting for input, so a
@@ -342,6 +395,10 @@ pub fn encode_lines<P: Schema>(
     out: &mut Output,
 ) -> Result<(), Failure> {
     let hex = args.hex;
+    if let Some(device) = &args.port.port {
+        let port = PortSink::open(device, args.port.baud)?;
+        out.port = Some(BufWriter::with_capacity(4096, port));
+    }
     let mut lines = Lines::new(Input::open(args.input.as_deref())?);
     let mut frame = Vec::new();
     let mut text = Vec::new();
@@ -423,12 +480,16 @@ fn read_line<L: DeserializeOwned>(line: &[u8]) -> Result<Option<L>, (Option<usiz
         let message = message.strip_suffix(&position).unwrap_or(&message);
         (Some(e.column()), format!("not valid JSON: {message}"))
     })?;
-    let map = value
-        .as_object()
-        .ok_or_else(|| (None, format!("expected a JSON object, found {value}")))?;
+    let mut value = value;
+    let map = match &mut value {
+        Value::Object(map) => map,
+        other => return Err((None, format!("expected a JSON object, found {other}"))),
+    };
     if !map.contains_key("type") && map.contains_key("error") {
         return Ok(None);
     }
+    // A receive time (`--port`, `--timestamps`) is not part of the message.
+    map.remove("t");
     serde_json::from_value(value)
         .map(Some)
         .map_err(|e| (None, e.to_string()))

@@ -7,10 +7,16 @@
 //! decoder and its help text, implementing [`driver::Schema`]. Built only
 //! with the `cli` feature.
 
+mod clock;
+mod csv;
 mod driver;
+mod export;
+mod flatten;
 mod input;
+mod mcap;
 mod omnitiles;
 mod pixy2;
+mod port;
 mod telemetrix;
 
 use clap::{Parser, Subcommand};
@@ -183,8 +189,8 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let mut out = driver::Output::stdout();
     let result = run(&cli.command, &mut out);
-    // Frames decoded before a failure are still written.
-    let flushed = out.flush();
+    // Frames decoded before a failure are still written, recordings completed.
+    let flushed = out.finish();
     let done = match (result, flushed) {
         (Err(Failure::BrokenPipe), _) | (_, Err(Failure::BrokenPipe)) => return ExitCode::SUCCESS,
         (Err(failure), _) | (Ok(_), Err(failure)) => return failure.report(),

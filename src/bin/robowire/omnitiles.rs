@@ -146,11 +146,11 @@ where
 {
     if args.datagrams {
         let input = Input::open(args.common.input.as_deref())?;
-        let mut printer = Printer::new(out, args.common.errors);
+        let mut printer = Printer::new(out, &args.common)?;
         return decode_datagrams(DatagramDecoder::new(framing), input, &mut printer);
     }
     let mut source = args.common.source()?;
-    let mut printer = Printer::new(out, args.common.errors);
+    let mut printer = Printer::new(out, &args.common)?;
     // Every side's buffer is the same size.
     let decoder = StreamDecoder::<_, { omnitiles::BOTH_BUFFER }>::new(framing);
     let chunk = args.common.chunk as usize;
@@ -161,7 +161,7 @@ where
 /// `--chunk` bytes at a time (its events never depend on the chunking).
 fn run_firmware(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     let mut source = args.common.source()?;
-    let mut printer = Printer::new(out, args.common.errors);
+    let mut printer = Printer::new(out, &args.common)?;
     let mut parser = FirmwareParser::new();
     let mut buf = vec![0u8; args.common.chunk as usize];
     loop {
