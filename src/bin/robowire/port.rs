@@ -110,6 +110,7 @@ impl PortSource {
                 error: io::Error::other(error),
             }
         })?;
+        eprintln!("robowire: reading {device} at {baud} baud; Ctrl-C ends the run");
         Ok(PortSource {
             name: device.to_owned(),
             port,
