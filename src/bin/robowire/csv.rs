@@ -55,7 +55,7 @@ impl Tables {
         let table = &mut self.tables[i];
         let written = table
             .file
-            .write_all(row.cells.as_bytes())
+            .write_all(&row.cells)
             .and_then(|()| table.file.write_all(b"\n"));
         written.map_err(|error| failure(&table.path, error))
     }

@@ -15,9 +15,7 @@ pub struct Row {
     /// The header line: column names joined by commas.
     pub names: String,
     /// The cells, joined by commas.
-    pub cells: String,
-    /// Where each cell starts and ends in `cells`, in column order.
-    pub spans: Vec<(usize, usize)>,
+    pub cells: Vec<u8>,
     /// The value of the top-level `type` field, if any.
     pub type_name: String,
     /// The value of the top-level `error` field, if any.
@@ -33,14 +31,14 @@ impl Row {
     pub fn clear(&mut self) {
         self.names.clear();
         self.cells.clear();
-        self.spans.clear();
         self.type_name.clear();
         self.error_name.clear();
         self.path.clear();
     }
 
-    /// Add a cell named `name` holding `value` (already plain text).
+    /// Add a cell named `name` holding `value` (text that needs no quotes).
     pub fn push_number(&mut self, name: &str, value: impl fmt::Display) {
+        use std::io::Write as _;
         let saved = std::mem::replace(&mut self.path, name.to_owned());
         self.cells_wanted = true;
         self.cell(|cells| {
@@ -88,15 +86,17 @@ impl Row {
         }
     }
 
-    fn cell(&mut self, write: impl FnOnce(&mut String)) {
+    fn cell(&mut self, write: impl FnOnce(&mut Vec<u8>)) {
         if !self.names.is_empty() {
             self.names.push(',');
-            self.cells.push(',');
+            self.cells.push(b',');
         }
-        push_quoted(&mut self.names, &self.path);
-        let start = self.cells.len();
+        if needs_quotes(&self.path) {
+            self.names.push_str(&quoted(&self.path));
+        } else {
+            self.names.push_str(&self.path);
+        }
         write(&mut self.cells);
-        self.spans.push((start, self.cells.len()));
     }
 
     fn text(&mut self, depth: usize, value: &str) {
@@ -106,21 +106,27 @@ impl Row {
             value.clone_into(&mut self.error_name);
         }
         if self.cells_wanted {
-            self.cell(|cells| push_quoted(cells, value));
+            self.cell(|cells| {
+                if needs_quotes(value) {
+                    cells.extend_from_slice(quoted(value).as_bytes());
+                } else {
+                    cells.extend_from_slice(value.as_bytes());
+                }
+            });
         }
     }
 }
 
-/// `text` as one CSV field: quoted when it holds a comma, a quote or a line
-/// break, quotes doubled.
-fn push_quoted(out: &mut String, text: &str) {
-    if text.contains([',', '"', '\n', '\r']) {
-        out.push('"');
-        out.push_str(&text.replace('"', "\"\""));
-        out.push('"');
-    } else {
-        out.push_str(text);
-    }
+/// Whether `text` must be quoted as a CSV field: it holds a comma, a quote
+/// or a line break.
+fn needs_quotes(text: &str) -> bool {
+    text.bytes()
+        .any(|b| matches!(b, b',' | b'"' | b'\n' | b'\r'))
+}
+
+/// `text` as a quoted CSV field, quotes doubled.
+fn quoted(text: &str) -> String {
+    format!("\"{}\"", text.replace('"', "\"\""))
 }
 
 /// Why a value could not be walked (a serializer error of the value's own).
@@ -147,13 +153,25 @@ struct Walker<'r> {
 }
 
 impl<'r> Walker<'r> {
-    fn number(self, value: impl fmt::Display) -> Result<(), WalkError> {
+    /// A number (or a boolean) in serde_json's shortest form, which reads
+    /// back as the same value.
+    fn number(self, value: impl Serialize) -> Result<(), WalkError> {
         if self.row.cells_wanted {
             self.row.cell(|cells| {
-                let _ = write!(cells, "{value}");
+                // Writing a number into a Vec cannot fail.
+                let _ = serde_json::to_writer(cells, &value);
             });
         }
         Ok(())
+    }
+
+    /// A float: non-finite ones (which JSON cannot hold) as `inf`, `-inf`, `NaN`.
+    fn float<F: Serialize + fmt::Display>(self, value: F, finite: bool) -> Result<(), WalkError> {
+        if finite {
+            self.number(value)
+        } else {
+            ser::Serializer::serialize_str(self, &value.to_string())
+        }
     }
 
     fn nested(self) -> Nested<'r> {
@@ -296,12 +314,13 @@ impl ser::SerializeMap for Nested<'_> {
     type Ok = ();
     type Error = WalkError;
     fn serialize_key<T: Serialize + ?Sized>(&mut self, key: &T) -> Result<(), WalkError> {
-        let mut name = String::new();
-        key.serialize(KeyName(&mut name))?;
-        self.key_len = Some(self.row.path.len());
         // The key waits in the path for its value.
-        self.push(&name);
-        Ok(())
+        let len = self.row.path.len();
+        if len > 0 {
+            self.row.path.push('.');
+        }
+        self.key_len = Some(len);
+        key.serialize(KeyName(&mut self.row.path))
     }
     fn serialize_value<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), WalkError> {
         let len = self.key_len.take().unwrap_or(self.row.path.len());
@@ -362,10 +381,10 @@ impl<'r> ser::Serializer for Walker<'r> {
         self.number(v)
     }
     fn serialize_f32(self, v: f32) -> Result<(), WalkError> {
-        self.number(v)
+        self.float(v, v.is_finite())
     }
     fn serialize_f64(self, v: f64) -> Result<(), WalkError> {
-        self.number(v)
+        self.float(v, v.is_finite())
     }
     fn serialize_char(self, v: char) -> Result<(), WalkError> {
         self.serialize_str(v.encode_utf8(&mut [0; 4]))
