@@ -40,6 +40,9 @@ Decode and encode robot serial protocol captures as JSON lines.
                              [--lenient] [--chunk N] [--hex] [--errors] [INPUT]
   robowire encode telemetrix [--dialect D] [--hex] [INPUT]
 
+Every decode also takes [--port DEVICE] [--baud RATE] [--timestamps] [--save FILE]
+[--format jsonl|csv|mcap] [-o PATH]; every encode [--port DEVICE] [--baud RATE].
+
 decode prints one JSON object per decoded frame; encode reads the same objects and
 writes the frames' bytes, so `robowire decode omnitiles x.bin | robowire encode
 omnitiles` reproduces every decoded frame byte for byte. INPUT is a file, or `-`
