@@ -3,7 +3,7 @@
 //! the end-of-run summary, and the encode loop over JSON lines. A protocol
 //! plugs in by implementing [`Schema`]; it writes no per-message code.
 
-use crate::export::{FormatArgs, Recorder};
+use crate::export::{FormatArgs, PlotRequest, Recorder};
 use crate::input::{ByteSource, HexBytes, Input, Lines, RawBytes};
 use crate::port::{EncodePort, LiveArgs, PortSink, PortSource};
 use crate::Failure;
@@ -112,6 +112,8 @@ pub struct Output {
     recorder: Option<Recorder>,
     /// The serial port an encode writes to instead of stdout.
     port: Option<BufWriter<PortSink>>,
+    /// What `robowire plot` asks the decode to draw.
+    pub plot: Option<PlotRequest>,
 }
 
 impl Output {
@@ -123,6 +125,7 @@ impl Output {
             zeros: 0,
             recorder: None,
             port: None,
+            plot: None,
         }
     }
 
@@ -173,7 +176,7 @@ impl<'o> Printer<'o> {
     /// A printer writing to `out` in the format `common` asks for;
     /// rejections are printed with `--errors`.
     pub fn new(out: &'o mut Output, common: &DecodeCommon) -> Result<Self, Failure> {
-        out.recorder = Recorder::new(common)?;
+        out.recorder = Recorder::new(common, out.plot.take())?;
         Ok(Printer {
             out,
             text: Vec::with_capacity(256),

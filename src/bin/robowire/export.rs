@@ -39,6 +39,13 @@ pub struct FormatArgs {
     pub output: Option<PathBuf>,
 }
 
+/// What `robowire plot` asks of a decode (nothing without `cli-plot`).
+#[cfg(feature = "cli-plot")]
+pub type PlotRequest = crate::plot::PlotArgs;
+/// What `robowire plot` asks of a decode (nothing without `cli-plot`).
+#[cfg(not(feature = "cli-plot"))]
+pub type PlotRequest = std::convert::Infallible;
+
 /// Where the formatted events go.
 enum Sink {
     /// JSON lines to stdout (`None`) or a file.
@@ -47,6 +54,9 @@ enum Sink {
     Csv(Tables),
     /// An MCAP recording.
     Mcap(Box<Recording>),
+    /// A plot, drawn at the end.
+    #[cfg(feature = "cli-plot")]
+    Plot(Box<crate::plot::Plot>),
 }
 
 impl Sink {
@@ -108,6 +118,9 @@ pub struct Recorder {
     fed: u64,
     /// Events written so far (the MCAP log time without a clock).
     events: u64,
+    /// Rejections among them.
+    #[cfg(feature = "cli-plot")]
+    rejections: u64,
     row: Row,
     text: Vec<u8>,
     /// A failure to save bytes, reported with the next event.
@@ -115,9 +128,12 @@ pub struct Recorder {
 }
 
 impl Recorder {
-    /// The recorder `common`'s options ask for, if they ask for more than
-    /// plain JSON lines on stdout.
-    pub fn new(common: &DecodeCommon) -> Result<Option<Recorder>, Failure> {
+    /// The recorder `common`'s options (and `plot`, for `robowire plot`)
+    /// ask for, if they ask for more than plain JSON lines on stdout.
+    pub fn new(
+        common: &DecodeCommon,
+        plot: Option<PlotRequest>,
+    ) -> Result<Option<Recorder>, Failure> {
         let (live, format) = (&common.live, &common.format);
         let clock = if live.port.is_some() {
             Some(Clock::live())
@@ -136,7 +152,22 @@ impl Recorder {
             None
         };
         let plain = clock.is_none() && live.save.is_none();
-        let Some(sink) = Sink::open(format, plain)? else {
+        let sink = match plot {
+            #[cfg(feature = "cli-plot")]
+            Some(plot) if format.format == Format::Jsonl => {
+                let output = format.output.as_deref();
+                let plot = crate::plot::Plot::new(plot, output, clock.is_some())?;
+                Some(Sink::Plot(Box::new(plot)))
+            }
+            #[cfg(feature = "cli-plot")]
+            Some(_) => {
+                return Err(Failure::Usage(
+                    "robowire plot draws a picture: leave out --format".to_owned(),
+                ))
+            }
+            _ => Sink::open(format, plain)?,
+        };
+        let Some(sink) = sink else {
             return Ok(None);
         };
         let save = live.save.as_deref().map(Save::create).transpose()?;
@@ -146,6 +177,8 @@ impl Recorder {
             sink,
             fed: 0,
             events: 0,
+            #[cfg(feature = "cli-plot")]
+            rejections: 0,
             row: Row::default(),
             text: Vec::with_capacity(256),
             pending: None,
@@ -181,26 +214,43 @@ impl Recorder {
         match event {
             Ok(frame) => {
                 let last = (frame.offset + frame.len as u64).saturating_sub(1);
-                self.write(&frame, last, stdout)
+                self.write(&frame, last, true, stdout)
             }
             Err(rejected) if errors => {
                 let at = rejected.offset;
-                self.write(&rejected, at, stdout)
+                self.write(&rejected, at, false, stdout)
             }
             Err(_) => Ok(()),
         }
     }
 
-    /// Write `event`, whose last byte is at input offset `last`.
+    /// Write `event` (a frame, or a rejection), whose last byte is at input
+    /// offset `last`.
     fn write<T: Serialize>(
         &mut self,
         event: &T,
         last: u64,
+        frame: bool,
         stdout: &mut dyn Write,
     ) -> Result<(), Failure> {
         let seconds = self.clock.as_mut().map(|clock| clock.time(last));
         let index = self.events;
         self.events += 1;
+        #[cfg(feature = "cli-plot")]
+        if let Sink::Plot(plot) = &mut self.sink {
+            // The x axis: the receive time, or the number of frames before.
+            let x = seconds.unwrap_or((index - self.rejections) as f64);
+            if frame {
+                self.row.clear();
+                self.row.walk(event).map_err(bug)?;
+                plot.frame(&self.row, x);
+            } else {
+                self.rejections += 1;
+                plot.rejected(x);
+            }
+            return Ok(());
+        }
+        let _ = frame;
         if let Sink::Csv(tables) = &mut self.sink {
             self.row.clear();
             if let Some(t) = seconds {
@@ -245,6 +295,8 @@ impl Recorder {
                 recording.write(kind, text, nanoseconds)
             }
             Sink::Csv(_) => unreachable!("CSV rows are written above"),
+            #[cfg(feature = "cli-plot")]
+            Sink::Plot(_) => unreachable!("plot points are taken above"),
         }
     }
 
@@ -259,7 +311,7 @@ impl Recorder {
                 error,
             }),
             Sink::Csv(tables) => tables.flush(),
-            Sink::Jsonl(None) | Sink::Mcap(_) => Ok(()),
+            _ => Ok(()),
         }
     }
 
@@ -269,6 +321,8 @@ impl Recorder {
         let flushed = self.flush();
         let finished = match &mut self.sink {
             Sink::Mcap(recording) => recording.finish(),
+            #[cfg(feature = "cli-plot")]
+            Sink::Plot(plot) => plot.finish(),
             _ => Ok(()),
         };
         saved.and(flushed).and(finished)

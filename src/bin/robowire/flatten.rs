@@ -16,6 +16,8 @@ pub struct Row {
     pub names: String,
     /// The cells, joined by commas.
     pub cells: Vec<u8>,
+    /// Where each cell starts and ends in `cells`, in column order.
+    spans: Vec<(usize, usize)>,
     /// The value of the top-level `type` field, if any.
     pub type_name: String,
     /// The value of the top-level `error` field, if any.
@@ -31,6 +33,7 @@ impl Row {
     pub fn clear(&mut self) {
         self.names.clear();
         self.cells.clear();
+        self.spans.clear();
         self.type_name.clear();
         self.error_name.clear();
         self.path.clear();
@@ -41,7 +44,7 @@ impl Row {
         use std::io::Write as _;
         let saved = std::mem::replace(&mut self.path, name.to_owned());
         self.cells_wanted = true;
-        self.cell(|cells| {
+        self.cell_with(|cells| {
             let _ = write!(cells, "{value}");
         });
         self.path = saved;
@@ -86,7 +89,15 @@ impl Row {
         }
     }
 
-    fn cell(&mut self, write: impl FnOnce(&mut Vec<u8>)) {
+    /// The cell of the column `name`, as CSV text, if the row has it.
+    #[cfg_attr(not(feature = "cli-plot"), allow(dead_code))]
+    pub fn cell(&self, name: &str) -> Option<&str> {
+        let i = self.names.split(',').position(|n| n == name)?;
+        let &(start, end) = self.spans.get(i)?;
+        std::str::from_utf8(&self.cells[start..end]).ok()
+    }
+
+    fn cell_with(&mut self, write: impl FnOnce(&mut Vec<u8>)) {
         if !self.names.is_empty() {
             self.names.push(',');
             self.cells.push(b',');
@@ -96,7 +107,9 @@ impl Row {
         } else {
             self.names.push_str(&self.path);
         }
+        let start = self.cells.len();
         write(&mut self.cells);
+        self.spans.push((start, self.cells.len()));
     }
 
     fn text(&mut self, depth: usize, value: &str) {
@@ -106,7 +119,7 @@ impl Row {
             value.clone_into(&mut self.error_name);
         }
         if self.cells_wanted {
-            self.cell(|cells| {
+            self.cell_with(|cells| {
                 if needs_quotes(value) {
                     cells.extend_from_slice(quoted(value).as_bytes());
                 } else {
@@ -157,7 +170,7 @@ impl<'r> Walker<'r> {
     /// back as the same value.
     fn number(self, value: impl Serialize) -> Result<(), WalkError> {
         if self.row.cells_wanted {
-            self.row.cell(|cells| {
+            self.row.cell_with(|cells| {
                 // Writing a number into a Vec cannot fail.
                 let _ = serde_json::to_writer(cells, &value);
             });
@@ -402,7 +415,7 @@ impl<'r> ser::Serializer for Walker<'r> {
     }
     fn serialize_none(self) -> Result<(), WalkError> {
         if self.row.cells_wanted {
-            self.row.cell(|_| {});
+            self.row.cell_with(|_| {});
         }
         Ok(())
     }

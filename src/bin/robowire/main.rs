@@ -16,6 +16,8 @@ mod input;
 mod mcap;
 mod omnitiles;
 mod pixy2;
+#[cfg(feature = "cli-plot")]
+mod plot;
 mod port;
 mod telemetrix;
 
@@ -71,6 +73,27 @@ enum Verb {
         #[command(subcommand)]
         protocol: EncodeProtocol,
     },
+    /// Plot decoded fields over time as PNG or SVG (-o FILE.png, --fields a,b.c).
+    #[cfg(feature = "cli-plot")]
+    Plot {
+        #[command(subcommand)]
+        protocol: DecodeProtocol,
+        /// What to draw.
+        #[command(flatten)]
+        plot: plot::PlotArgs,
+    },
+}
+
+impl Verb {
+    /// The protocol a decode or a plot decodes.
+    fn decoding(&self) -> Option<&DecodeProtocol> {
+        match self {
+            Verb::Decode { protocol } => Some(protocol),
+            #[cfg(feature = "cli-plot")]
+            Verb::Plot { protocol, .. } => Some(protocol),
+            Verb::Encode { .. } => None,
+        }
+    }
 }
 
 #[derive(Debug, Subcommand)]
@@ -154,13 +177,14 @@ enum Done {
 }
 
 fn run(verb: &Verb, out: &mut driver::Output) -> Result<Done, Failure> {
+    #[cfg(feature = "cli-plot")]
+    if let Verb::Plot { plot, .. } = verb {
+        out.plot = Some(plot.clone());
+    }
     match verb {
-        Verb::Decode { protocol } => match protocol {
-            DecodeProtocol::Omnitiles(args) => omnitiles::decode(args, out),
-            DecodeProtocol::Pixy2(args) => pixy2::decode(args, out),
-            DecodeProtocol::Telemetrix(args) => telemetrix::decode(args, out),
-        }
-        .map(Done::Decoded),
+        #[cfg(feature = "cli-plot")]
+        Verb::Plot { protocol, .. } => decode(protocol, out),
+        Verb::Decode { protocol } => decode(protocol, out),
         Verb::Encode { protocol } => match protocol {
             EncodeProtocol::Omnitiles(args) => omnitiles::encode(args, out),
             EncodeProtocol::Pixy2(args) => pixy2::encode(args, out),
@@ -168,6 +192,15 @@ fn run(verb: &Verb, out: &mut driver::Output) -> Result<Done, Failure> {
         }
         .map(|()| Done::Encoded),
     }
+}
+
+fn decode(protocol: &DecodeProtocol, out: &mut driver::Output) -> Result<Done, Failure> {
+    match protocol {
+        DecodeProtocol::Omnitiles(args) => omnitiles::decode(args, out),
+        DecodeProtocol::Pixy2(args) => pixy2::decode(args, out),
+        DecodeProtocol::Telemetrix(args) => telemetrix::decode(args, out),
+    }
+    .map(Done::Decoded)
 }
 
 /// What a warning after `protocol`'s decode may suggest ([`driver::Hints`]).
@@ -199,8 +232,8 @@ fn main() -> ExitCode {
         (Err(failure), _) | (Ok(_), Err(failure)) => return failure.report(),
         (Ok(done), Ok(())) => done,
     };
-    match (done, &cli.command) {
-        (Done::Decoded(decoded), Verb::Decode { protocol }) => {
+    match (done, cli.command.decoding()) {
+        (Done::Decoded(decoded), Some(protocol)) => {
             // An input that could not be read at all has nothing to sum up.
             if let (Some(failure @ Failure::Io { .. }), 0) = (&decoded.failure, decoded.stats.bytes)
             {
