@@ -6,10 +6,10 @@
 
 mod cli_common;
 
-use cli_common::{data_arg, run};
+use cli_common::{data_arg, run, scratch};
 use serde_json::Value;
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// The sample captures, with the arguments that decode them.
 const CAPTURES: [(&str, &str); 4] = [
@@ -18,13 +18,6 @@ const CAPTURES: [(&str, &str); 4] = [
     ("omnitiles", "host_commands.bin"),
     ("telemetrix", "telemetrix_reports.bin"),
 ];
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("robowire-export-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// The JSON lines of a plain decode (with `extra` options).
 fn json_lines(protocol: &str, capture: &str, extra: &[&str]) -> Vec<String> {
@@ -83,7 +76,7 @@ fn same_cell(cell: &str, value: &Value) -> bool {
 #[test]
 fn csv_tables_hold_every_json_line() {
     for (protocol, capture) in CAPTURES {
-        let dir = scratch(&format!("csv-{capture}"));
+        let dir = scratch(&format!("export-csv-{capture}"));
         let dir_arg = dir.to_str().unwrap();
         let input = data_arg(capture);
         let out = run(
@@ -140,7 +133,7 @@ fn csv_tables_hold_every_json_line() {
 
 #[test]
 fn csv_keeps_nested_fields_in_serde_order_and_nulls_empty() {
-    let dir = scratch("csv-order");
+    let dir = scratch("export-csv-order");
     let input = data_arg("ble_telemetry.bin");
     let out = run(
         &[
@@ -239,7 +232,7 @@ fn check_schema(schema: &Value, value: &Value, all_listed: bool, line: &str) {
 #[test]
 fn mcap_messages_are_the_json_lines() {
     for (protocol, capture) in CAPTURES {
-        let dir = scratch(&format!("mcap-{capture}"));
+        let dir = scratch(&format!("export-mcap-{capture}"));
         let path = dir.join("out.mcap");
         let input = data_arg(capture);
         let out = run(
@@ -282,7 +275,7 @@ fn mcap_messages_are_the_json_lines() {
 
 #[test]
 fn mcap_log_times_are_the_receive_times() {
-    let dir = scratch("mcap-times");
+    let dir = scratch("export-mcap-times");
     let path = dir.join("out.mcap");
     let input = data_arg("ble_telemetry.bin");
     let out = run(
@@ -362,7 +355,7 @@ fn timestamps_estimate_from_the_baud_rate() {
 /// with times encode back to the same frames.
 #[test]
 fn a_saved_capture_replays_with_its_times() {
-    let dir = scratch("save");
+    let dir = scratch("export-save");
     let saved = dir.join("capture.bin");
     let input = std::fs::read(cli_common::data("ble_telemetry.bin")).unwrap();
     let out = run(

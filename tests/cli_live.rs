@@ -14,22 +14,15 @@ mod pico_sim;
 #[allow(dead_code)]
 mod tile_sim;
 
-use cli_common::run;
+use cli_common::{run, scratch};
 use serde_json::Value;
 use serialport::{SerialPort, TTYPort};
 use std::io::{BufRead, BufReader, Read, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::ChildStderr;
 use std::process::{Child, Command, Stdio};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("robowire-live-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn tile_capture() -> Vec<u8> {
     let captures = tile_sim::captures().unwrap();
@@ -168,7 +161,7 @@ fn from_file(protocol: &str, bytes: &[u8], dir: &Path) -> (Vec<Value>, String) {
 /// compare with a decode of the same bytes from a file.
 fn live_decode(protocol: &str, bytes: &[u8], baud: u32, name: &str) {
     let _one = serial();
-    let dir = scratch(name);
+    let dir = scratch(&format!("live-{name}"));
     let saved = dir.join("capture.bin");
     let (mut master, slave) = pty_pair();
     let device = slave.name().unwrap();
@@ -242,7 +235,7 @@ fn a_pico_decodes_live_at_115200_baud() {
 #[test]
 fn a_port_that_disappears_ends_with_an_error_and_keeps_the_frames() {
     let _one = serial();
-    let dir = scratch("unplugged");
+    let dir = scratch("live-unplugged");
     let saved = dir.join("capture.bin");
     let bytes = tile_capture();
     let half = &bytes[..bytes.len() / 2];

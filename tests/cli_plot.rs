@@ -3,15 +3,7 @@
 
 mod cli_common;
 
-use cli_common::{data_arg, run};
-use std::path::PathBuf;
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("robowire-plot-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use cli_common::{data_arg, run, scratch};
 
 /// The PNG's size and its pixels as RGB(A) rows.
 fn read_png(path: &std::path::Path) -> (u32, u32, usize, Vec<u8>) {
@@ -29,7 +21,7 @@ fn count(pixels: &[u8], samples: usize, want: impl Fn(&[u8]) -> bool) -> usize {
 
 #[test]
 fn a_png_of_the_requested_size_with_the_series_and_the_rejections() {
-    let dir = scratch("png");
+    let dir = scratch("plot-png");
     let png = dir.join("plot.png");
     let input = data_arg("ble_telemetry.bin");
     let out = run(
@@ -94,7 +86,7 @@ fn a_png_of_the_requested_size_with_the_series_and_the_rejections() {
 
 #[test]
 fn an_svg_names_the_fields_and_the_time_axis() {
-    let dir = scratch("svg");
+    let dir = scratch("plot-svg");
     let svg = dir.join("plot.svg");
     let out = run(
         &[
@@ -127,7 +119,7 @@ fn an_svg_names_the_fields_and_the_time_axis() {
 #[test]
 fn plot_errors_say_what_to_do() {
     let input = data_arg("ble_telemetry.bin");
-    let dir = scratch("errors");
+    let dir = scratch("plot-errors");
     let png = dir.join("p.png");
     let png = png.to_str().unwrap();
     let cases: [(&[&str], i32, &str); 4] = [
