@@ -93,7 +93,7 @@ pub struct DecodeArgs {
     /// Read hex text where each line is one datagram (one BLE notification,
     /// one write, one SPI buffer) and decode each with the datagram decoder
     /// (implies --hex; not with --chunk).
-    #[arg(long, conflicts_with = "chunk", display_order = 5)]
+    #[arg(long, conflicts_with_all = ["chunk", "port"], display_order = 5)]
     pub datagrams: bool,
     /// Parse commands as the tile's own firmware does, to see what a tile
     /// executed (only with --from host; not with --datagrams).
@@ -101,7 +101,7 @@ pub struct DecodeArgs {
     /// No rescan after a rejected candidate, payload bytes taken blindly, an
     /// 0xA5 in the id slot consumed as an unknown id: prints the commands a
     /// tile executed rather than every command the host sent.
-    #[arg(long, conflicts_with = "datagrams", display_order = 5)]
+    #[arg(long, conflicts_with_all = ["datagrams", "port", "timestamps", "save"], display_order = 5)]
     pub as_firmware: bool,
     /// The options every decode shares.
     #[command(flatten)]

@@ -24,7 +24,7 @@ pub struct PlotArgs {
     #[arg(long, value_name = "WxH", default_value = "1200x600", value_parser = size, global = true)]
     pub size: (u32, u32),
     /// A TrueType font for the labels [default: DejaVu Sans, Liberation
-    /// Sans, Arial or Helvetica where the system has one].
+    /// Sans or Arial, where the system has one].
     #[arg(long, value_name = "FILE.ttf", global = true)]
     pub font: Option<PathBuf>,
 }
