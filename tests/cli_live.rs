@@ -310,6 +310,15 @@ fn a_port_with_input_is_a_usage_error() {
         b"",
     );
     assert_eq!(out.code, 2, "{}", out.stderr);
+    // Neither datagram lines nor the firmware's parser read a port.
+    for mode in [&["--datagrams"][..], &["--from", "host", "--as-firmware"]] {
+        let mut args = vec!["decode", "omnitiles", "--port", "/dev/null"];
+        args.extend_from_slice(mode);
+        let out = run(&args, b"");
+        assert_eq!(out.code, 2, "{args:?}: {}", out.stderr);
+        let refused = out.stderr.contains("cannot be used with") && out.stderr.contains("--port");
+        assert!(refused, "{}", out.stderr);
+    }
 }
 
 #[test]
