@@ -250,7 +250,6 @@ impl Recorder {
             }
             return Ok(());
         }
-        let _ = frame;
         if let Sink::Csv(tables) = &mut self.sink {
             self.row.clear();
             if let Some(t) = seconds {
@@ -284,11 +283,15 @@ impl Recorder {
                 }
             }
             Sink::Mcap(recording) => {
-                self.row.names_of(event).map_err(bug)?;
-                let kind = if self.row.type_name.is_empty() {
-                    "rejected"
-                } else {
-                    &self.row.type_name
+                let kind = match leading_kind(text, frame) {
+                    Some(kind) => kind,
+                    None => {
+                        self.row.names_of(event).map_err(bug)?;
+                        match self.row.type_name.as_str() {
+                            "" => "rejected",
+                            name => name,
+                        }
+                    }
                 };
                 // The time as printed (microseconds), in nanoseconds.
                 let nanoseconds = seconds.map_or(index, |t| (t * 1e6).round() as u64 * 1000);
@@ -327,6 +330,31 @@ impl Recorder {
         };
         saved.and(flushed).and(finished)
     }
+}
+
+/// The channel of an event printed as `json`, read from the line's start
+/// when it has the usual shape: `{["t":T,]"offset":N,"len":N,"type":"NAME"`
+/// for a frame (its serde form writes `offset`, `len`, then the message,
+/// tag first), `rejected` for a rejection. `None` when the start looks
+/// otherwise: the caller then walks the event.
+fn leading_kind(json: &[u8], frame: bool) -> Option<&str> {
+    if !frame {
+        return Some("rejected");
+    }
+    let mut rest = json.strip_prefix(b"{")?;
+    if let Some(after) = rest.strip_prefix(b"\"t\":") {
+        rest = &after[after.iter().position(|&b| b == b',')? + 1..];
+    }
+    for key in [&b"\"offset\":"[..], b"\"len\":"] {
+        let after = rest.strip_prefix(key)?;
+        let digits = after.iter().take_while(|b| b.is_ascii_digit()).count();
+        rest = after[digits..].strip_prefix(b",")?;
+    }
+    let name = rest.strip_prefix(b"\"type\":\"")?;
+    let end = name.iter().position(|&b| b == b'"' || b == b'\\')?;
+    (name.get(end) == Some(&b'"'))
+        .then(|| std::str::from_utf8(&name[..end]).ok())
+        .flatten()
 }
 
 /// The library's types always serialize: a failure here is a bug in

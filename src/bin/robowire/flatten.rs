@@ -238,8 +238,16 @@ impl Nested<'_> {
             return Ok(());
         }
         let len = self.row.path.len();
-        let dot = if len > 0 { "." } else { "" };
-        let _ = write!(self.row.path, "{dot}{index}");
+        if len > 0 {
+            self.row.path.push('.');
+        }
+        match u8::try_from(index) {
+            // Most arrays are short: no formatting machinery for them.
+            Ok(digit @ 0..=9) => self.row.path.push(char::from(b'0' + digit)),
+            _ => {
+                let _ = write!(self.row.path, "{index}");
+            }
+        }
         let walked = value.serialize(Walker {
             row: self.row,
             depth: self.depth,
