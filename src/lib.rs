@@ -93,6 +93,7 @@
 //! | `serde` | `Serialize`/`Deserialize` for every message, error and frame, in the CLI's JSON-lines schema (turns on `serde/alloc`; the codecs still never allocate) | yes |
 //! | `defmt` | `defmt::Format` for every public type, for logging from firmware | yes |
 //! | `cli` | the `robowire` command-line tool (turns on `serde`) | no (std) |
+//! | `cli-plot` | `robowire plot`: PNG and SVG plots (turns on `cli`) | no (std) |
 //!
 //! The library needs Rust 1.81; the `cli` tool needs 1.85.
 //!

@@ -84,3 +84,11 @@ pub fn summary_line(counts: [u64; 6]) -> String {
         s(other),
     )
 }
+
+/// A fresh scratch directory for one test, named after the process and `name`.
+pub fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("robowire-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}

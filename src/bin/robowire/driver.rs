@@ -3,7 +3,9 @@
 //! the end-of-run summary, and the encode loop over JSON lines. A protocol
 //! plugs in by implementing [`Schema`]; it writes no per-message code.
 
+use crate::export::{FormatArgs, PlotRequest, Recorder};
 use crate::input::{ByteSource, HexBytes, Input, Lines, RawBytes};
+use crate::port::{EncodePort, LiveArgs, PortSink, PortSource};
 use crate::suspicion;
 use crate::Failure;
 use clap::Args;
@@ -60,11 +62,21 @@ pub struct DecodeCommon {
     /// The capture to read; `-` or absent for stdin.
     #[arg(value_name = "INPUT")]
     pub input: Option<PathBuf>,
+    /// Live ports, receive times and saved captures.
+    #[command(flatten)]
+    pub live: LiveArgs,
+    /// The output format and destination.
+    #[command(flatten)]
+    pub format: FormatArgs,
 }
 
 impl DecodeCommon {
-    /// The input, as raw bytes or (with `--hex`) hex text.
+    /// The input, as raw bytes or (with `--hex`) hex text, from a file, stdin
+    /// or (with `--port`) a serial port.
     pub fn source(&self) -> Result<Box<dyn ByteSource>, Failure> {
+        if let Some(device) = &self.live.port {
+            return Ok(Box::new(PortSource::open(device, self.live.baud)?));
+        }
         let input = Input::open(self.input.as_deref())?;
         Ok(if self.hex {
             Box::new(HexBytes::new(input))
@@ -93,6 +105,9 @@ pub struct EncodeCommon {
     /// JSON lines to read; `-` or absent for stdin.
     #[arg(value_name = "INPUT")]
     pub input: Option<PathBuf>,
+    /// A serial port to write the frames to.
+    #[command(flatten)]
+    pub port: EncodePort,
 }
 
 /// Buffered stdout that turns a closed pipe into [`Failure::BrokenPipe`],
@@ -106,6 +121,12 @@ pub struct Output {
     /// Output held back until the input's first [`suspicion::SPI_GATE`]
     /// bytes show that it is no SPI buffers ([`Output::hold_for_spi`]).
     held: Option<Vec<u8>>,
+    /// Times, a saved capture or another format, when a decode asks for them.
+    recorder: Option<Recorder>,
+    /// The serial port an encode writes to instead of stdout.
+    port: Option<BufWriter<PortSink>>,
+    /// What `robowire plot` asks the decode to draw.
+    pub plot: Option<PlotRequest>,
 }
 
 impl Output {
@@ -116,6 +137,9 @@ impl Output {
             start: Vec::new(),
             zeros: 0,
             held: None,
+            recorder: None,
+            port: None,
+            plot: None,
         }
     }
 
@@ -128,30 +152,49 @@ impl Output {
 
     /// Write `bytes`.
     pub fn write(&mut self, bytes: &[u8]) -> Result<(), Failure> {
-        match &mut self.held {
-            Some(held) => {
-                held.extend_from_slice(bytes);
-                Ok(())
-            }
+        if let Some(held) = &mut self.held {
+            held.extend_from_slice(bytes);
+            return Ok(());
+        }
+        match &mut self.port {
+            Some(port) => port.write_all(bytes).map_err(|e| port_failure(port, e)),
             None => self.out.write_all(bytes).map_err(Failure::stdout),
         }
     }
 
     /// Write everything still buffered (nothing while output is held back).
     pub fn flush(&mut self) -> Result<(), Failure> {
+        if let Some(recorder) = &mut self.recorder {
+            recorder.flush()?;
+        }
+        if let Some(port) = &mut self.port {
+            port.flush().map_err(|e| port_failure(port, e))?;
+        }
         if self.held.is_some() {
             return Ok(());
         }
         self.out.flush().map_err(Failure::stdout)
     }
 
-    /// At the end of a run: write what was held back, or with `discard`
-    /// drop it, then flush.
-    pub fn finish(&mut self, discard: bool) -> Result<(), Failure> {
-        if let Some(held) = self.held.take().filter(|_| !discard) {
-            self.write(&held)?;
+    /// Write what was held back and stop holding output.
+    fn release(&mut self) -> Result<(), Failure> {
+        match self.held.take() {
+            Some(held) => self.write(&held),
+            None => Ok(()),
         }
-        self.flush()
+    }
+
+    /// At the end of a run: write what was held back, or with `discard`
+    /// drop it, complete every output (an MCAP recording's summary, a saved
+    /// capture) and write everything still buffered.
+    pub fn finish(&mut self, discard: bool) -> Result<(), Failure> {
+        if discard {
+            self.held = None;
+        }
+        let released = self.release();
+        let finished = self.recorder.as_mut().map_or(Ok(()), Recorder::finish);
+        let flushed = self.flush();
+        released.and(finished).and(flushed)
     }
 
     /// What [`suspicion::assess`] reads: the first 64 KiB of the decoded
@@ -166,6 +209,13 @@ impl Output {
     }
 }
 
+fn port_failure(port: &BufWriter<PortSink>, error: io::Error) -> Failure {
+    Failure::Io {
+        context: port.get_ref().name().to_owned(),
+        error,
+    }
+}
+
 /// Prints decode events as JSON lines: the library's `serde` form of
 /// [`OwnedFrame`] and [`Rejected`].
 pub struct Printer<'o> {
@@ -175,13 +225,15 @@ pub struct Printer<'o> {
 }
 
 impl<'o> Printer<'o> {
-    /// A printer writing to `out`; rejections are printed when `errors`.
-    pub fn new(out: &'o mut Output, errors: bool) -> Self {
-        Printer {
+    /// A printer writing to `out` in the format `common` asks for;
+    /// rejections are printed with `--errors`.
+    pub fn new(out: &'o mut Output, common: &DecodeCommon) -> Result<Self, Failure> {
+        out.recorder = Recorder::new(common, out.plot.take())?;
+        Ok(Printer {
             out,
             text: Vec::with_capacity(256),
-            errors,
-        }
+            errors: common.errors,
+        })
     }
 
     /// Print one event.
@@ -189,6 +241,14 @@ impl<'o> Printer<'o> {
         &mut self,
         event: Result<OwnedFrame<M>, Rejected<E>>,
     ) -> Result<(), Failure> {
+        if let Some(recorder) = &mut self.out.recorder {
+            // JSON lines with times go to stdout, or wait with the rest.
+            let stdout: &mut dyn Write = match &mut self.out.held {
+                Some(held) => held,
+                None => &mut self.out.out,
+            };
+            return recorder.event(event, self.errors, stdout);
+        }
         let buf = &mut self.text;
         buf.clear();
         let written = match event {
@@ -203,21 +263,25 @@ impl<'o> Printer<'o> {
         self.out.write(buf)
     }
 
-    /// Note bytes about to be decoded, for [`suspicion::assess`]. While
-    /// output is held back, the first [`suspicion::SPI_GATE`] bytes decide:
-    /// SPI buffers are [`Failure::Refused`] (nothing was printed), anything
-    /// else releases the output.
+    /// Note bytes about to be decoded, for [`suspicion::assess`] and the
+    /// recorder. While output is held back, the first
+    /// [`suspicion::SPI_GATE`] bytes decide: SPI buffers are
+    /// [`Failure::Refused`] (nothing was printed), anything else releases the
+    /// output.
     pub fn observe(&mut self, bytes: &[u8]) -> Result<(), Failure> {
         let out = &mut *self.out;
         let room = 64 * 1024 - out.start.len();
         out.start.extend_from_slice(&bytes[..room.min(bytes.len())]);
         out.zeros += bytes.iter().filter(|&&b| b == 0).count() as u64;
+        if let Some(recorder) = &mut out.recorder {
+            recorder.observe(bytes);
+        }
         if out.held.is_some() && out.start.len() >= suspicion::SPI_GATE {
             if suspicion::spi_buffers(&out.start) {
                 out.held = None;
                 return Err(Failure::Refused(suspicion::spi_refusal()));
             }
-            out.finish(false)?;
+            out.release()?;
         }
         Ok(())
     }
@@ -364,6 +428,10 @@ pub fn encode_lines<P: Schema>(
     out: &mut Output,
 ) -> Result<(), Failure> {
     let hex = args.hex;
+    if let Some(device) = &args.port.port {
+        let port = PortSink::open(device, args.port.baud)?;
+        out.port = Some(BufWriter::with_capacity(4096, port));
+    }
     let mut lines = Lines::new(Input::open(args.input.as_deref())?);
     let mut frame = Vec::new();
     let mut text = Vec::new();
@@ -445,12 +513,16 @@ fn read_line<L: DeserializeOwned>(line: &[u8]) -> Result<Option<L>, (Option<usiz
         let message = message.strip_suffix(&position).unwrap_or(&message);
         (Some(e.column()), format!("not valid JSON: {message}"))
     })?;
-    let map = value
-        .as_object()
-        .ok_or_else(|| (None, format!("expected a JSON object, found {value}")))?;
+    let mut value = value;
+    let map = match &mut value {
+        Value::Object(map) => map,
+        other => return Err((None, format!("expected a JSON object, found {other}"))),
+    };
     if !map.contains_key("type") && map.contains_key("error") {
         return Ok(None);
     }
+    // A receive time (`--port`, `--timestamps`) is not part of the message.
+    map.remove("t");
     serde_json::from_value(value)
         .map(Some)
         .map_err(|e| (None, e.to_string()))

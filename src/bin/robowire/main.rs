@@ -7,10 +7,18 @@
 //! decoder and its help text, implementing [`driver::Schema`]. Built only
 //! with the `cli` feature.
 
+mod clock;
+mod csv;
 mod driver;
+mod export;
+mod flatten;
 mod input;
+mod mcap;
 mod omnitiles;
 mod pixy2;
+#[cfg(feature = "cli-plot")]
+mod plot;
+mod port;
 mod suspicion;
 mod telemetrix;
 
@@ -33,6 +41,9 @@ Decode and encode robot serial protocol captures as JSON lines.
   robowire decode telemetrix [--from host|pico|any] [--dialect mirte13|mirte12|upstream11]
                              [--lenient] [--chunk N] [--hex] [--errors] [INPUT]
   robowire encode telemetrix [--dialect D] [--hex] [INPUT]
+
+Every decode also takes [--port DEVICE] [--baud RATE] [--timestamps] [--save FILE]
+[--format jsonl|csv|mcap] [-o PATH]; every encode [--port DEVICE] [--baud RATE].
 
 decode prints one JSON object per decoded frame; encode reads the same objects and
 writes the frames' bytes, so `robowire decode omnitiles x.bin | robowire encode
@@ -64,6 +75,27 @@ enum Verb {
         #[command(subcommand)]
         protocol: EncodeProtocol,
     },
+    /// Plot decoded fields over time as PNG or SVG (-o FILE.png, --fields a,b.c).
+    #[cfg(feature = "cli-plot")]
+    Plot {
+        #[command(subcommand)]
+        protocol: DecodeProtocol,
+        /// What to draw.
+        #[command(flatten)]
+        plot: plot::PlotArgs,
+    },
+}
+
+impl Verb {
+    /// The protocol a decode or a plot decodes.
+    fn decoding(&self) -> Option<&DecodeProtocol> {
+        match self {
+            Verb::Decode { protocol } => Some(protocol),
+            #[cfg(feature = "cli-plot")]
+            Verb::Plot { protocol, .. } => Some(protocol),
+            Verb::Encode { .. } => None,
+        }
+    }
 }
 
 #[derive(Debug, Subcommand)]
@@ -154,13 +186,14 @@ enum Done {
 }
 
 fn run(verb: &Verb, out: &mut driver::Output) -> Result<Done, Failure> {
+    #[cfg(feature = "cli-plot")]
+    if let Verb::Plot { plot, .. } = verb {
+        out.plot = Some(plot.clone());
+    }
     match verb {
-        Verb::Decode { protocol } => match protocol {
-            DecodeProtocol::Omnitiles(args) => omnitiles::decode(args, out),
-            DecodeProtocol::Pixy2(args) => pixy2::decode(args, out),
-            DecodeProtocol::Telemetrix(args) => telemetrix::decode(args, out),
-        }
-        .map(Done::Decoded),
+        #[cfg(feature = "cli-plot")]
+        Verb::Plot { protocol, .. } => decode(protocol, out),
+        Verb::Decode { protocol } => decode(protocol, out),
         Verb::Encode { protocol } => match protocol {
             EncodeProtocol::Omnitiles(args) => omnitiles::encode(args, out),
             EncodeProtocol::Pixy2(args) => pixy2::encode(args, out),
@@ -168,6 +201,15 @@ fn run(verb: &Verb, out: &mut driver::Output) -> Result<Done, Failure> {
         }
         .map(|()| Done::Encoded),
     }
+}
+
+fn decode(protocol: &DecodeProtocol, out: &mut driver::Output) -> Result<Done, Failure> {
+    match protocol {
+        DecodeProtocol::Omnitiles(args) => omnitiles::decode(args, out),
+        DecodeProtocol::Pixy2(args) => pixy2::decode(args, out),
+        DecodeProtocol::Telemetrix(args) => telemetrix::decode(args, out),
+    }
+    .map(Done::Decoded)
 }
 
 /// What the checks after `protocol`'s decode may suggest, and whether the
@@ -214,16 +256,16 @@ fn main() -> ExitCode {
     if out.holding() && suspicion::spi_buffers(out.observed().0) {
         result = Err(Failure::Refused(suspicion::spi_refusal()));
     }
-    let suspicion = match (&result, &cli.command) {
-        (Ok(Done::Decoded(decoded)), Verb::Decode { protocol }) => {
+    let suspicion = match (&result, cli.command.decoding()) {
+        (Ok(Done::Decoded(decoded)), Some(protocol)) => {
             let (start, zeros) = out.observed();
             let (hints, allow_noise) = hints(protocol);
             suspicion::assess(&decoded.stats, start, zeros, hints).map(|s| (s, allow_noise))
         }
         _ => None,
     };
-    // Frames decoded before a failure are still written, but not those of a
-    // refused decode.
+    // Frames decoded before a failure are still written and recordings
+    // completed, but the frames of a refused decode are not printed.
     let flushed = out.finish(matches!(result, Err(Failure::Refused(_))));
     let done = match (result, flushed) {
         (Err(Failure::BrokenPipe), _) | (_, Err(Failure::BrokenPipe)) => return ExitCode::SUCCESS,

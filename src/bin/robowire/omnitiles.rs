@@ -94,7 +94,7 @@ pub struct DecodeArgs {
     /// Read hex text where each line is one datagram (one BLE notification,
     /// one write, one SPI buffer) and decode each with the datagram decoder
     /// (implies --hex; not with --chunk).
-    #[arg(long, conflicts_with = "chunk", display_order = 5)]
+    #[arg(long, conflicts_with_all = ["chunk", "port"], display_order = 5)]
     pub datagrams: bool,
     /// Parse commands as the tile's own firmware does, to see what a tile
     /// executed (only with --from host; not with --datagrams).
@@ -102,7 +102,7 @@ pub struct DecodeArgs {
     /// No rescan after a rejected candidate, payload bytes taken blindly, an
     /// 0xA5 in the id slot consumed as an unknown id: prints the commands a
     /// tile executed rather than every command the host sent.
-    #[arg(long, conflicts_with = "datagrams", display_order = 5)]
+    #[arg(long, conflicts_with_all = ["datagrams", "port", "timestamps", "save"], display_order = 5)]
     pub as_firmware: bool,
     /// The options every decode shares.
     #[command(flatten)]
@@ -170,14 +170,14 @@ where
         if hold {
             out.hold_for_spi();
         }
-        let mut printer = Printer::new(out, args.common.errors);
+        let mut printer = Printer::new(out, &args.common)?;
         return decode_datagrams(DatagramDecoder::new(framing), input, &mut printer);
     }
     let mut source = args.common.source()?;
     if hold {
         out.hold_for_spi();
     }
-    let mut printer = Printer::new(out, args.common.errors);
+    let mut printer = Printer::new(out, &args.common)?;
     // Every side's buffer is the same size.
     let decoder = StreamDecoder::<_, { omnitiles::BOTH_BUFFER }>::new(framing);
     let chunk = args.common.chunk as usize;
@@ -188,7 +188,7 @@ where
 /// `--chunk` bytes at a time (its events never depend on the chunking).
 fn run_firmware(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     let mut source = args.common.source()?;
-    let mut printer = Printer::new(out, args.common.errors);
+    let mut printer = Printer::new(out, &args.common)?;
     let mut parser = FirmwareParser::new();
     let mut buf = vec![0u8; args.common.chunk as usize];
     loop {

@@ -203,7 +203,7 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
         ));
     }
     let mut source = args.common.source()?;
-    let mut printer = Printer::new(out, args.common.errors);
+    let mut printer = Printer::new(out, &args.common)?;
     let chunk = args.common.chunk as usize;
     let source = source.as_mut();
     let (dialect, lenient) = (args.dialect, args.lenient);

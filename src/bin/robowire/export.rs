@@ -1,0 +1,364 @@
+//! What a decode writes, beyond today's plain JSON lines: receive times,
+//! a saved capture, and the other formats (CSV tables, an MCAP recording).
+//! Every format reads frames through the library's `serde` form, so none
+//! knows a message type.
+
+use crate::clock::{self, Clock, Save};
+use crate::csv::Tables;
+use crate::driver::DecodeCommon;
+use crate::flatten::Row;
+use crate::mcap::Recording;
+use crate::Failure;
+use clap::{Args, ValueEnum};
+use robowire::stream::{OwnedFrame, Rejected};
+use serde::Serialize;
+use std::fs::File;
+use std::io::{self, BufWriter, IsTerminal, Write};
+use std::path::{Path, PathBuf};
+
+/// The output formats of `decode`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// One JSON object per line, per frame (stdout, or -o FILE).
+    Jsonl,
+    /// One CSV file per message type, in the directory -o DIR.
+    Csv,
+    /// An MCAP recording (Foxglove, PlotJuggler), to -o FILE or a pipe.
+    Mcap,
+}
+
+/// The options of a `decode` that choose its output.
+#[derive(Debug, Args)]
+pub struct FormatArgs {
+    /// The output format: jsonl (the default), csv (one file per message
+    /// type, in -o DIR) or mcap (a recording, to -o FILE or a pipe).
+    #[arg(long, value_enum, default_value_t = Format::Jsonl, display_order = 11)]
+    pub format: Format,
+    /// Where the output goes: a file (jsonl, mcap) or a directory (csv).
+    #[arg(short = 'o', long = "output", value_name = "PATH", display_order = 12)]
+    pub output: Option<PathBuf>,
+}
+
+/// What `robowire plot` asks of a decode (nothing without `cli-plot`).
+#[cfg(feature = "cli-plot")]
+pub type PlotRequest = crate::plot::PlotArgs;
+/// What `robowire plot` asks of a decode (nothing without `cli-plot`).
+#[cfg(not(feature = "cli-plot"))]
+pub type PlotRequest = std::convert::Infallible;
+
+/// Where the formatted events go.
+enum Sink {
+    /// JSON lines to stdout (`None`) or a file.
+    Jsonl(Option<(String, BufWriter<File>)>),
+    /// CSV tables.
+    Csv(Tables),
+    /// An MCAP recording.
+    Mcap(Box<Recording>),
+    /// A plot, drawn at the end.
+    #[cfg(feature = "cli-plot")]
+    Plot(Box<crate::plot::Plot>),
+}
+
+impl Sink {
+    /// The sink `format` asks for; `None` for plain JSON lines on stdout
+    /// when `plain` (nothing else to record either).
+    fn open(format: &FormatArgs, plain: bool) -> Result<Option<Sink>, Failure> {
+        Ok(Some(match (format.format, format.output.as_deref()) {
+            (Format::Jsonl, None) if plain => return Ok(None),
+            (Format::Jsonl, None) => Sink::Jsonl(None),
+            (Format::Jsonl, Some(path)) => {
+                Sink::Jsonl(Some((path.display().to_string(), create(path)?)))
+            }
+            (Format::Csv, Some(dir)) => Sink::Csv(Tables::create(dir)?),
+            (Format::Csv, None) => {
+                return Err(Failure::Usage(
+                    "--format csv writes one file per message type: name a directory with -o DIR"
+                        .to_owned(),
+                ))
+            }
+            (Format::Mcap, Some(path)) => {
+                let file = Box::new(create(path)?);
+                Sink::Mcap(Box::new(Recording::create(
+                    path.display().to_string(),
+                    file,
+                )?))
+            }
+            (Format::Mcap, None) if io::stdout().is_terminal() => {
+                return Err(Failure::Usage(MCAP_TERMINAL.to_owned()))
+            }
+            (Format::Mcap, None) => {
+                let out = Box::new(BufWriter::with_capacity(256 * 1024, io::stdout()));
+                Sink::Mcap(Box::new(Recording::create("stdout".to_owned(), out)?))
+            }
+        }))
+    }
+}
+
+/// Why `--format mcap` does not write to a terminal.
+const MCAP_TERMINAL: &str =
+    "--format mcap writes a binary file: name it with -o FILE, or pipe stdout into a program";
+
+/// Create (or truncate) the file at `path`, buffered.
+fn create(path: &Path) -> Result<BufWriter<File>, Failure> {
+    File::create(path)
+        .map(|file| BufWriter::with_capacity(256 * 1024, file))
+        .map_err(|error| Failure::Io {
+            context: path.display().to_string(),
+            error,
+        })
+}
+
+/// The formats, times and saved capture of one decode; absent for plain
+/// JSON lines on stdout without times, which print as they always have.
+pub struct Recorder {
+    clock: Option<Clock>,
+    save: Option<Save>,
+    sink: Sink,
+    /// Bytes observed so far.
+    fed: u64,
+    /// Events written so far (the MCAP log time without a clock).
+    events: u64,
+    /// Rejections among them.
+    #[cfg(feature = "cli-plot")]
+    rejections: u64,
+    row: Row,
+    text: Vec<u8>,
+    /// A failure to save bytes, reported with the next event.
+    pending: Option<Failure>,
+}
+
+impl Recorder {
+    /// The recorder `common`'s options (and `plot`, for `robowire plot`)
+    /// ask for, if they ask for more than plain JSON lines on stdout.
+    pub fn new(
+        common: &DecodeCommon,
+        plot: Option<PlotRequest>,
+    ) -> Result<Option<Recorder>, Failure> {
+        let (live, format) = (&common.live, &common.format);
+        let clock = if live.port.is_some() {
+            Some(Clock::live())
+        } else if live.timestamps {
+            let replay = common
+                .input
+                .as_deref()
+                .filter(|p| p.as_os_str() != "-")
+                .map(clock::index_path)
+                .filter(|index| index.is_file());
+            Some(match replay {
+                Some(index) => Clock::replay(&index)?,
+                None => Clock::baud(live.baud),
+            })
+        } else {
+            None
+        };
+        let plain = clock.is_none() && live.save.is_none();
+        let sink = match plot {
+            #[cfg(feature = "cli-plot")]
+            Some(plot) if format.format == Format::Jsonl => {
+                let output = format.output.as_deref();
+                let plot = crate::plot::Plot::new(plot, output, clock.is_some())?;
+                Some(Sink::Plot(Box::new(plot)))
+            }
+            #[cfg(feature = "cli-plot")]
+            Some(_) => {
+                return Err(Failure::Usage(
+                    "robowire plot draws a picture: leave out --format".to_owned(),
+                ))
+            }
+            _ => Sink::open(format, plain)?,
+        };
+        let Some(sink) = sink else {
+            return Ok(None);
+        };
+        let save = live.save.as_deref().map(Save::create).transpose()?;
+        Ok(Some(Recorder {
+            clock,
+            save,
+            sink,
+            fed: 0,
+            events: 0,
+            #[cfg(feature = "cli-plot")]
+            rejections: 0,
+            row: Row::default(),
+            text: Vec::with_capacity(256),
+            pending: None,
+        }))
+    }
+
+    /// `bytes` arrived (they are about to be decoded).
+    pub fn observe(&mut self, bytes: &[u8]) {
+        self.fed += bytes.len() as u64;
+        let seconds = match &mut self.clock {
+            Some(clock) => clock.arrived(self.fed),
+            None => 0.0,
+        };
+        if let Some(save) = &mut self.save {
+            if self.pending.is_none() {
+                if let Err(failure) = save.write(bytes, self.fed, seconds) {
+                    self.pending = Some(failure);
+                }
+            }
+        }
+    }
+
+    /// Write one event; rejections only when `errors`.
+    pub fn event<M: Serialize, E: Serialize>(
+        &mut self,
+        event: Result<OwnedFrame<M>, Rejected<E>>,
+        errors: bool,
+        stdout: &mut dyn Write,
+    ) -> Result<(), Failure> {
+        if let Some(failure) = self.pending.take() {
+            return Err(failure);
+        }
+        match event {
+            Ok(frame) => {
+                let last = (frame.offset + frame.len as u64).saturating_sub(1);
+                self.write(&frame, last, true, stdout)
+            }
+            Err(rejected) if errors => {
+                let at = rejected.offset;
+                self.write(&rejected, at, false, stdout)
+            }
+            Err(_) => Ok(()),
+        }
+    }
+
+    /// Write `event` (a frame, or a rejection), whose last byte is at input
+    /// offset `last`.
+    fn write<T: Serialize>(
+        &mut self,
+        event: &T,
+        last: u64,
+        frame: bool,
+        stdout: &mut dyn Write,
+    ) -> Result<(), Failure> {
+        let seconds = self.clock.as_mut().map(|clock| clock.time(last));
+        let index = self.events;
+        self.events += 1;
+        #[cfg(feature = "cli-plot")]
+        if let Sink::Plot(plot) = &mut self.sink {
+            // The x axis: the receive time, or the number of frames before.
+            let x = seconds.unwrap_or((index - self.rejections) as f64);
+            if frame {
+                self.row.clear();
+                self.row.walk(event).map_err(bug)?;
+                plot.frame(&self.row, x);
+            } else {
+                self.rejections += 1;
+                plot.rejected(x);
+            }
+            return Ok(());
+        }
+        if let Sink::Csv(tables) = &mut self.sink {
+            self.row.clear();
+            if let Some(t) = seconds {
+                self.row.push_number("t", format_args!("{t:.6}"));
+            }
+            self.row.walk(event).map_err(bug)?;
+            return tables.write(&self.row);
+        }
+        let text = &mut self.text;
+        text.clear();
+        serde_json::to_writer(&mut *text, event).map_err(bug)?;
+        if let Some(t) = seconds {
+            // `{"t":…,` before the event's own members.
+            let members = text.split_off(1);
+            text.clear();
+            let _ = write!(text, "{{\"t\":{t:.6}");
+            if members.len() > 1 {
+                text.push(b',');
+            }
+            text.extend_from_slice(&members);
+        }
+        match &mut self.sink {
+            Sink::Jsonl(file) => {
+                text.push(b'\n');
+                match file {
+                    Some((name, file)) => file.write_all(text).map_err(|error| Failure::Io {
+                        context: name.clone(),
+                        error,
+                    }),
+                    None => stdout.write_all(text).map_err(Failure::stdout),
+                }
+            }
+            Sink::Mcap(recording) => {
+                let kind = match leading_kind(text, frame) {
+                    Some(kind) => kind,
+                    None => {
+                        self.row.names_of(event).map_err(bug)?;
+                        match self.row.type_name.as_str() {
+                            "" => "rejected",
+                            name => name,
+                        }
+                    }
+                };
+                // The time as printed (microseconds), in nanoseconds.
+                let nanoseconds = seconds.map_or(index, |t| (t * 1e6).round() as u64 * 1000);
+                recording.write(kind, text, nanoseconds)
+            }
+            Sink::Csv(_) => unreachable!("CSV rows are written above"),
+            #[cfg(feature = "cli-plot")]
+            Sink::Plot(_) => unreachable!("plot points are taken above"),
+        }
+    }
+
+    /// Write out everything so far (before a read that may wait).
+    pub fn flush(&mut self) -> Result<(), Failure> {
+        if let Some(save) = &mut self.save {
+            save.flush()?;
+        }
+        match &mut self.sink {
+            Sink::Jsonl(Some((name, file))) => file.flush().map_err(|error| Failure::Io {
+                context: name.clone(),
+                error,
+            }),
+            Sink::Csv(tables) => tables.flush(),
+            _ => Ok(()),
+        }
+    }
+
+    /// Complete every output: the saved capture, the tables, the recording's summary.
+    pub fn finish(&mut self) -> Result<(), Failure> {
+        let saved = self.pending.take().map_or(Ok(()), Err);
+        let flushed = self.flush();
+        let finished = match &mut self.sink {
+            Sink::Mcap(recording) => recording.finish(),
+            #[cfg(feature = "cli-plot")]
+            Sink::Plot(plot) => plot.finish(),
+            _ => Ok(()),
+        };
+        saved.and(flushed).and(finished)
+    }
+}
+
+/// The channel of an event printed as `json`, read from the line's start
+/// when it has the usual shape: `{["t":T,]"offset":N,"len":N,"type":"NAME"`
+/// for a frame (its serde form writes `offset`, `len`, then the message,
+/// tag first), `rejected` for a rejection. `None` when the start looks
+/// otherwise: the caller then walks the event.
+fn leading_kind(json: &[u8], frame: bool) -> Option<&str> {
+    if !frame {
+        return Some("rejected");
+    }
+    let mut rest = json.strip_prefix(b"{")?;
+    if let Some(after) = rest.strip_prefix(b"\"t\":") {
+        rest = &after[after.iter().position(|&b| b == b',')? + 1..];
+    }
+    for key in [&b"\"offset\":"[..], b"\"len\":"] {
+        let after = rest.strip_prefix(key)?;
+        let digits = after.iter().take_while(|b| b.is_ascii_digit()).count();
+        rest = after[digits..].strip_prefix(b",")?;
+    }
+    let name = rest.strip_prefix(b"\"type\":\"")?;
+    let end = name.iter().position(|&b| b == b'"' || b == b'\\')?;
+    (name.get(end) == Some(&b'"'))
+        .then(|| std::str::from_utf8(&name[..end]).ok())
+        .flatten()
+}
+
+/// The library's types always serialize: a failure here is a bug in
+/// robowire, reported rather than hidden.
+fn bug(error: impl std::fmt::Display) -> Failure {
+    Failure::Reported(format!("cannot write an event: {error}"))
+}

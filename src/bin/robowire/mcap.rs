@@ -1,0 +1,138 @@
+//! `--format mcap`: an MCAP recording (the ROS 2 and Foxglove file format)
+//! with one channel per message type (topic `/TYPE`, rejections on
+//! `/rejected`), JSON message encoding, each message exactly the JSON line
+//! the default format prints. Each channel's JSON Schema is derived from the
+//! serde form of the first frame of its type: every field it has, with the
+//! JSON type it has there. Any leaf may also be `null` (a reading the device
+//! marks invalid) and a number may be a string (the library's marker for a
+//! value out of range or not finite, as `"out_of_range"` or `"inf"`); frames
+//! of the same type with other fields (another layout) still validate, as
+//! the schema does not forbid members it does not list. Log and publish times are the receive time in
+//! nanoseconds when there is one (`--port`, `--timestamps`), otherwise the
+//! frame's index.
+
+use crate::Failure;
+use mcap::records::MessageHeader;
+use mcap::write::{NoSeek, WriteOptions, Writer};
+use serde_json::{json, Map, Value};
+use std::collections::{BTreeMap, HashMap};
+use std::io::{self, Write};
+
+/// An MCAP recording being written.
+pub struct Recording {
+    name: String,
+    writer: Option<Writer<NoSeek<Box<dyn Write>>>>,
+    /// Each kind's channel and its next sequence number.
+    channels: HashMap<String, (u16, u32)>,
+}
+
+impl Recording {
+    /// Start a recording on `out`, called `name` in messages. The writer
+    /// never seeks, so `out` may be a pipe.
+    pub fn create(name: String, out: Box<dyn Write>) -> Result<Recording, Failure> {
+        let options = WriteOptions::new()
+            .compression(None)
+            .profile("")
+            .library(concat!("robowire ", env!("CARGO_PKG_VERSION")))
+            .disable_seeking(true);
+        let writer = options
+            .create(NoSeek::new(out))
+            .map_err(|error| failure(&name, error))?;
+        Ok(Recording {
+            name,
+            writer: Some(writer),
+            channels: HashMap::new(),
+        })
+    }
+
+    /// Record `json` (one JSON object: a frame, or a rejection when `kind`
+    /// is `rejected`) at `nanoseconds`.
+    pub fn write(&mut self, kind: &str, json: &[u8], nanoseconds: u64) -> Result<(), Failure> {
+        let Some(writer) = self.writer.as_mut() else {
+            return Ok(());
+        };
+        let (channel, sequence) = match self.channels.get_mut(kind) {
+            Some(entry) => entry,
+            None => {
+                let value: Value = serde_json::from_slice(json)
+                    .map_err(|e| Failure::Reported(format!("cannot read back a frame: {e}")))?;
+                let mut schema = schema_of(&value);
+                schema["title"] = Value::from(kind);
+                let schema = serde_json::to_vec(&schema).expect("a JSON value serializes");
+                let schema_id = writer
+                    .add_schema(kind, "jsonschema", &schema)
+                    .map_err(|error| failure(&self.name, error))?;
+                let topic = format!("/{kind}");
+                let channel = writer
+                    .add_channel(schema_id, &topic, "json", &BTreeMap::new())
+                    .map_err(|error| failure(&self.name, error))?;
+                self.channels.entry(kind.to_owned()).or_insert((channel, 0))
+            }
+        };
+        let header = MessageHeader {
+            channel_id: *channel,
+            sequence: *sequence,
+            log_time: nanoseconds,
+            publish_time: nanoseconds,
+        };
+        *sequence = sequence.wrapping_add(1);
+        writer
+            .write_to_known_channel(&header, json)
+            .map_err(|error| failure(&self.name, error))
+    }
+
+    /// Write the summary and the footer: the recording is complete.
+    pub fn finish(&mut self) -> Result<(), Failure> {
+        let Some(mut writer) = self.writer.take() else {
+            return Ok(());
+        };
+        writer
+            .finish()
+            .map_err(|error| failure(&self.name, error))?;
+        writer
+            .into_inner()
+            .into_inner()
+            .flush()
+            .map_err(|error| io_failure(&self.name, error))
+    }
+}
+
+/// A JSON Schema for values shaped like `value`.
+pub fn schema_of(value: &Value) -> Value {
+    match value {
+        Value::Object(members) => {
+            let properties: Map<String, Value> = members
+                .iter()
+                .map(|(name, member)| (name.clone(), schema_of(member)))
+                .collect();
+            json!({"type": "object", "properties": properties})
+        }
+        Value::Array(items) => match items.first() {
+            Some(first) => json!({"type": "array", "items": schema_of(first)}),
+            None => json!({"type": "array"}),
+        },
+        Value::Null => json!({}),
+        Value::Bool(_) => json!({"type": ["boolean", "null"]}),
+        Value::Number(n) if n.is_f64() => json!({"type": ["number", "string", "null"]}),
+        Value::Number(_) => json!({"type": ["integer", "string", "null"]}),
+        Value::String(_) => json!({"type": ["string", "null"]}),
+    }
+}
+
+fn failure(name: &str, error: mcap::McapError) -> Failure {
+    match error {
+        mcap::McapError::Io(error) => io_failure(name, error),
+        other => io_failure(name, io::Error::other(other)),
+    }
+}
+
+fn io_failure(name: &str, error: io::Error) -> Failure {
+    if name == "stdout" {
+        Failure::stdout(error)
+    } else {
+        Failure::Io {
+            context: name.to_owned(),
+            error,
+        }
+    }
+}

@@ -1,0 +1,181 @@
+//! Live serial ports: `--port DEVICE --baud RATE` for `decode` (bytes read
+//! as they arrive, frames stamped with their receive time) and for `encode`
+//! (frames written to the port). Ctrl-C ends a live decode as the end of the
+//! input does: every frame decoded so far is written, the summary printed,
+//! a `--save` capture completed.
+
+use crate::Failure;
+use clap::Args;
+use std::io::{self, Read, Write};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+
+/// How long a read waits before looking for Ctrl-C again.
+const READ_TIMEOUT: Duration = Duration::from_millis(50);
+
+/// How long a write may wait for the port to drain before it fails.
+const WRITE_TIMEOUT: Duration = Duration::from_secs(10);
+
+/// The options of a `decode` that name where bytes come from and when.
+#[derive(Debug, Args)]
+pub struct LiveArgs {
+    /// Read from the serial port DEVICE (e.g. /dev/ttyACM0) instead of INPUT;
+    /// every frame gets its receive time "t" (seconds since the start).
+    ///
+    /// Ctrl-C ends the run cleanly: every frame decoded so far is written
+    /// and the summary printed.
+    #[arg(
+        long,
+        value_name = "DEVICE",
+        conflicts_with = "input",
+        display_order = 7
+    )]
+    pub port: Option<String>,
+    /// The port's baud rate (8N1); with --timestamps, the rate the file's
+    /// times are estimated at.
+    #[arg(
+        long,
+        value_name = "RATE",
+        default_value_t = 115_200,
+        display_order = 8
+    )]
+    pub baud: u32,
+    /// Give frames from a file a time "t" too: replayed from INPUT.times
+    /// when --save wrote one, otherwise estimated from the byte offset at
+    /// --baud (an estimate: it assumes the line was never idle).
+    #[arg(long, display_order = 9)]
+    pub timestamps: bool,
+    /// Save the raw bytes as they arrive to FILE, and their receive times
+    /// to FILE.times (so `decode FILE --timestamps` replays them).
+    #[arg(long, value_name = "FILE", display_order = 10)]
+    pub save: Option<PathBuf>,
+}
+
+/// The options of an `encode` that send frames to a port.
+#[derive(Debug, Args)]
+pub struct EncodePort {
+    /// Write the frames to the serial port DEVICE instead of stdout.
+    #[arg(long, value_name = "DEVICE", conflicts_with = "hex")]
+    pub port: Option<String>,
+    /// The port's baud rate (8N1).
+    #[arg(long, value_name = "RATE", default_value_t = 115_200)]
+    pub baud: u32,
+}
+
+/// Open `device` at `baud`, 8N1, its reads and writes waiting at most
+/// `timeout`. A missing device or a permission problem is one line.
+fn open(
+    device: &str,
+    baud: u32,
+    timeout: Duration,
+) -> Result<Box<dyn serialport::SerialPort>, Failure> {
+    serialport::new(device, baud)
+        .timeout(timeout)
+        .open()
+        .map_err(|error| {
+            let error = io::Error::from(error);
+            let hint = match error.kind() {
+                io::ErrorKind::PermissionDenied => {
+                    " (on Linux, add yourself to the group that owns it, often dialout)"
+                }
+                _ => "",
+            };
+            Failure::Io {
+                context: format!("{device}: cannot open the serial port{hint}"),
+                error,
+            }
+        })
+}
+
+/// A serial port as the decode loop reads it: whatever has arrived, waiting
+/// at most [`READ_TIMEOUT`] at a time so Ctrl-C is seen.
+pub struct PortSource {
+    name: String,
+    port: Box<dyn serialport::SerialPort>,
+    stop: Arc<AtomicBool>,
+}
+
+impl PortSource {
+    /// Open `device` and end the run on Ctrl-C.
+    pub fn open(device: &str, baud: u32) -> Result<PortSource, Failure> {
+        let port = open(device, baud, READ_TIMEOUT)?;
+        let stop = Arc::new(AtomicBool::new(false));
+        let flag = Arc::clone(&stop);
+        // Only one handler per process: a second `set_handler` cannot happen here.
+        ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst)).map_err(|error| {
+            Failure::Io {
+                context: "cannot catch Ctrl-C".to_owned(),
+                error: io::Error::other(error),
+            }
+        })?;
+        eprintln!("robowire: reading {device} at {baud} baud; Ctrl-C ends the run");
+        Ok(PortSource {
+            name: device.to_owned(),
+            port,
+            stop,
+        })
+    }
+}
+
+impl crate::input::ByteSource for PortSource {
+    fn fill(&mut self, buf: &mut [u8]) -> Result<usize, Failure> {
+        loop {
+            if self.stop.load(Ordering::SeqCst) {
+                return Ok(0);
+            }
+            match self.port.read(buf) {
+                Ok(0) | Err(_) if self.stop.load(Ordering::SeqCst) => return Ok(0),
+                Ok(0) => {}
+                Ok(n) => return Ok(n),
+                Err(e)
+                    if matches!(
+                        e.kind(),
+                        io::ErrorKind::TimedOut | io::ErrorKind::Interrupted
+                    ) => {}
+                Err(error) => {
+                    return Err(Failure::Io {
+                        context: format!("{}: the serial port failed (unplugged?)", self.name),
+                        error,
+                    })
+                }
+            }
+        }
+    }
+
+    fn may_wait(&self) -> bool {
+        true
+    }
+}
+
+/// An `encode` destination on a port: frames are written as they are encoded.
+pub struct PortSink {
+    name: String,
+    port: Box<dyn serialport::SerialPort>,
+}
+
+impl PortSink {
+    /// Open `device` at `baud` for writing.
+    pub fn open(device: &str, baud: u32) -> Result<PortSink, Failure> {
+        Ok(PortSink {
+            name: device.to_owned(),
+            port: open(device, baud, WRITE_TIMEOUT)?,
+        })
+    }
+
+    /// The port's name, for messages.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+}
+
+impl Write for PortSink {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        self.port.write(buf)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.port.flush()
+    }
+}

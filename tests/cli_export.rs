@@ -1,0 +1,426 @@
+//! `robowire decode --format csv` and `--format mcap`: the files read back
+//! with the `csv` and `mcap` crates hold exactly what the JSON lines say, on
+//! every sample capture of every protocol; `--timestamps` and its replay.
+
+#![cfg(feature = "cli")]
+
+mod cli_common;
+
+use cli_common::{data_arg, run, scratch};
+use serde_json::Value;
+use std::collections::HashMap;
+use std::path::Path;
+
+/// The sample captures, with the arguments that decode them.
+/// The sample captures exported, with the options that decode them right
+/// (SPI buffers need their layout: the default ones are refused on them).
+const CAPTURES: [(&str, &str, &[&str]); 4] = [
+    ("omnitiles", "ble_telemetry.bin", &[]),
+    (
+        "omnitiles",
+        "spi_telemetry.bin",
+        &["--layout", "auto,spi45"],
+    ),
+    ("omnitiles", "host_commands.bin", &[]),
+    ("telemetrix", "telemetrix_reports.bin", &[]),
+];
+
+/// The JSON lines of a plain decode (with `extra` options).
+fn json_lines(protocol: &str, capture: &str, extra: &[&str]) -> Vec<String> {
+    let input = data_arg(capture);
+    let mut args = vec!["decode", protocol, "--errors", &input];
+    args.extend_from_slice(extra);
+    let out = run(&args, b"");
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    out.lines().into_iter().map(str::to_owned).collect()
+}
+
+/// The table a JSON event belongs to: its type, or `rejected-ERROR`.
+fn kind(value: &Value) -> String {
+    match value.get("type") {
+        Some(t) => t.as_str().unwrap().to_owned(),
+        None => format!("rejected-{}", value["error"].as_str().unwrap()),
+    }
+}
+
+/// `value` flattened as the CSV format promises: nested names joined with
+/// dots, array elements by index, null empty.
+fn flatten(prefix: &str, value: &Value, out: &mut Vec<(String, Value)>) {
+    let name = |key: &str| {
+        if prefix.is_empty() {
+            key.to_owned()
+        } else {
+            format!("{prefix}.{key}")
+        }
+    };
+    match value {
+        Value::Object(members) => {
+            for (key, member) in members {
+                flatten(&name(key), member, out);
+            }
+        }
+        Value::Array(items) => {
+            for (i, item) in items.iter().enumerate() {
+                flatten(&name(&i.to_string()), item, out);
+            }
+        }
+        leaf => out.push((prefix.to_owned(), leaf.clone())),
+    }
+}
+
+/// A CSV cell holds `value`: the same text, the same number, or empty for null.
+fn same_cell(cell: &str, value: &Value) -> bool {
+    match value {
+        Value::Null => cell.is_empty(),
+        Value::String(s) => cell == s,
+        Value::Bool(b) => cell == b.to_string(),
+        Value::Number(n) => cell.parse::<f64>().ok() == n.as_f64(),
+        _ => false,
+    }
+}
+
+#[test]
+fn csv_tables_hold_every_json_line() {
+    for (protocol, capture, options) in CAPTURES {
+        let dir = scratch(&format!("export-csv-{capture}"));
+        let dir_arg = dir.to_str().unwrap();
+        let input = data_arg(capture);
+        let args = [
+            "decode", protocol, "--errors", "--format", "csv", "-o", dir_arg, &input,
+        ];
+        let out = run(&[&args[..], options].concat(), b"");
+        assert_eq!(out.code, 0, "{}", out.stderr);
+        assert!(out.stdout.is_empty());
+        // Every row of every table, by (kind, offset); the file name says the kind.
+        let mut rows: HashMap<(String, u64), (Vec<String>, Vec<String>)> = HashMap::new();
+        let mut count = 0;
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            let stem = path.file_stem().unwrap().to_str().unwrap().to_owned();
+            let kind = match stem.rsplit_once('-') {
+                Some((kind, n)) if n.parse::<u32>().is_ok() => kind.to_owned(),
+                _ => stem,
+            };
+            let mut reader = csv::Reader::from_path(&path).unwrap();
+            let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+            for record in reader.records() {
+                let record = record.unwrap();
+                let cells: Vec<String> = record.iter().map(String::from).collect();
+                let offset = cells[0].parse().unwrap();
+                rows.insert((kind.clone(), offset), (header.clone(), cells));
+                count += 1;
+            }
+        }
+        let lines = json_lines(protocol, capture, options);
+        assert_eq!(count, lines.len(), "{capture}: one row per JSON line");
+        for line in &lines {
+            let value: Value = serde_json::from_str(line).unwrap();
+            let offset = value["offset"].as_u64().unwrap();
+            let (header, cells) = &rows[&(kind(&value), offset)];
+            let mut expected = Vec::new();
+            flatten("", &value, &mut expected);
+            // serde_json's maps are sorted by key; the CSV keeps the serde order.
+            let mut named: Vec<(&String, &String)> = header.iter().zip(cells).collect();
+            named.sort();
+            expected.sort_by(|a, b| a.0.cmp(&b.0));
+            assert_eq!(named.len(), expected.len(), "{capture}: {line}");
+            for ((name, cell), (want_name, want)) in named.iter().zip(&expected) {
+                assert_eq!(*name, want_name, "{capture}: {line}");
+                assert!(
+                    same_cell(cell, want),
+                    "{capture}: {name} = {cell:?}, want {want}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn csv_keeps_nested_fields_in_serde_order_and_nulls_empty() {
+    let dir = scratch("export-csv-order");
+    let input = data_arg("ble_telemetry.bin");
+    let out = run(
+        &[
+            "decode",
+            "omnitiles",
+            "--format",
+            "csv",
+            "-o",
+            dir.to_str().unwrap(),
+            &input,
+        ],
+        b"",
+    );
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let mut reader = csv::Reader::from_path(dir.join("telemetry.csv")).unwrap();
+    let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+    assert_eq!(
+        header[..12],
+        [
+            "offset", "len", "type", "layout", "m1_pos", "m2_pos", "uwb.0", "uwb.1", "uwb.2",
+            "uwb.3", "tof", "imu.ax"
+        ]
+    );
+    let first = reader.records().next().unwrap().unwrap();
+    assert_eq!(&first[9], "", "uwb[3] is null in the first frame");
+}
+
+#[test]
+fn csv_needs_a_directory() {
+    let input = data_arg("ble_telemetry.bin");
+    let out = run(&["decode", "omnitiles", "--format", "csv", &input], b"");
+    assert_eq!(out.code, 2);
+    assert!(out.stderr.contains("-o DIR"), "{}", out.stderr);
+}
+
+/// Every message of an MCAP file: (topic, schema name, schema, log time, data).
+fn mcap_messages(bytes: &[u8]) -> Vec<(String, String, Value, u64, String)> {
+    mcap::MessageStream::new(bytes)
+        .unwrap()
+        .map(|message| {
+            let message = message.unwrap();
+            let schema = message.channel.schema.clone().unwrap();
+            assert_eq!(schema.encoding, "jsonschema");
+            assert_eq!(message.channel.message_encoding, "json");
+            (
+                message.channel.topic.clone(),
+                schema.name.clone(),
+                serde_json::from_slice(&schema.data).unwrap(),
+                message.log_time,
+                String::from_utf8(message.data.to_vec()).unwrap(),
+            )
+        })
+        .collect()
+}
+
+/// `value` is valid for `schema` (the subset of JSON Schema the derived
+/// schemas use: `type`, `properties`, `items`), and the first value of each
+/// type has every member listed.
+fn check_schema(schema: &Value, value: &Value, all_listed: bool, line: &str) {
+    let json_type = match value {
+        Value::Null => "null",
+        Value::Bool(_) => "boolean",
+        Value::Number(n) if n.is_f64() => "number",
+        Value::Number(_) => "integer",
+        Value::String(_) => "string",
+        Value::Array(_) => "array",
+        Value::Object(_) => "object",
+    };
+    if let Some(types) = schema.get("type") {
+        let allowed = |t: &Value| t == json_type || (t == "number" && json_type == "integer");
+        let ok = match types {
+            Value::Array(types) => types.iter().any(allowed),
+            one => allowed(one),
+        };
+        assert!(ok, "{value} is not a {types}: {line}");
+    }
+    match value {
+        Value::Object(members) => {
+            let properties = &schema["properties"];
+            for (key, member) in members {
+                match properties.get(key) {
+                    Some(property) => check_schema(property, member, all_listed, line),
+                    None => assert!(!all_listed, "{key} is not in the schema: {line}"),
+                }
+            }
+        }
+        Value::Array(items) => {
+            for item in items {
+                check_schema(&schema["items"], item, all_listed, line);
+            }
+        }
+        _ => {}
+    }
+}
+
+#[test]
+fn mcap_messages_are_the_json_lines() {
+    for (protocol, capture, options) in CAPTURES {
+        let dir = scratch(&format!("export-mcap-{capture}"));
+        let path = dir.join("out.mcap");
+        let input = data_arg(capture);
+        let args = [
+            "decode",
+            protocol,
+            "--errors",
+            "--format",
+            "mcap",
+            "-o",
+            path.to_str().unwrap(),
+            &input,
+        ];
+        let out = run(&[&args[..], options].concat(), b"");
+        assert_eq!(out.code, 0, "{}", out.stderr);
+        let messages = mcap_messages(&std::fs::read(&path).unwrap());
+        let lines = json_lines(protocol, capture, options);
+        assert_eq!(messages.len(), lines.len(), "{capture}");
+        let mut seen = std::collections::HashSet::new();
+        for (i, ((topic, schema_name, schema, log_time, data), line)) in
+            messages.iter().zip(&lines).enumerate()
+        {
+            assert_eq!(data, line);
+            let value: Value = serde_json::from_str(line).unwrap();
+            let kind = value
+                .get("type")
+                .map_or("rejected", |t| t.as_str().unwrap());
+            assert_eq!(topic, &format!("/{kind}"));
+            assert_eq!(schema_name, kind);
+            let first = seen.insert(topic.clone());
+            check_schema(schema, &value, first, line);
+            assert_eq!(
+                *log_time, i as u64,
+                "without times, the log time is the index"
+            );
+        }
+    }
+}
+
+#[test]
+fn mcap_log_times_are_the_receive_times() {
+    let dir = scratch("export-mcap-times");
+    let path = dir.join("out.mcap");
+    let input = data_arg("ble_telemetry.bin");
+    let out = run(
+        &[
+            "decode",
+            "omnitiles",
+            "--timestamps",
+            "--baud",
+            "9600",
+            "--format",
+            "mcap",
+            "-o",
+            path.to_str().unwrap(),
+            &input,
+        ],
+        b"",
+    );
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let messages = mcap_messages(&std::fs::read(&path).unwrap());
+    let lines = json_lines(
+        "omnitiles",
+        "ble_telemetry.bin",
+        &["--timestamps", "--baud", "9600"],
+    );
+    let lines: Vec<&String> = lines.iter().filter(|l| l.contains("\"type\"")).collect();
+    assert_eq!(messages.len(), lines.len());
+    for ((_, _, _, log_time, data), line) in messages.iter().zip(lines) {
+        assert_eq!(data, line);
+        let value: Value = serde_json::from_str(line).unwrap();
+        let t = value["t"].as_f64().unwrap();
+        assert_eq!(*log_time, (t * 1e9).round() as u64);
+    }
+}
+
+#[test]
+fn mcap_to_a_pipe_is_a_complete_file() {
+    let input = data_arg("telemetrix_reports.bin");
+    let out = run(&["decode", "telemetrix", "--format", "mcap", &input], b"");
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let frames = json_lines("telemetrix", "telemetrix_reports.bin", &[])
+        .iter()
+        .filter(|l| l.contains("\"type\""))
+        .count();
+    assert_eq!(mcap_messages(&out.stdout).len(), frames);
+}
+
+/// `--timestamps` on a file: the end of each frame at 10 bits per byte.
+#[test]
+fn timestamps_estimate_from_the_baud_rate() {
+    let lines = json_lines(
+        "omnitiles",
+        "ble_telemetry.bin",
+        &["--timestamps", "--baud", "115200"],
+    );
+    let plain = json_lines("omnitiles", "ble_telemetry.bin", &[]);
+    assert_eq!(lines.len(), plain.len());
+    for (line, plain) in lines.iter().zip(&plain) {
+        let mut value: Value = serde_json::from_str(line).unwrap();
+        let t = value
+            .as_object_mut()
+            .unwrap()
+            .remove("t")
+            .unwrap()
+            .as_f64()
+            .unwrap();
+        assert_eq!(value, serde_json::from_str::<Value>(plain).unwrap());
+        let end = match value.get("len") {
+            Some(len) => value["offset"].as_u64().unwrap() + len.as_u64().unwrap(),
+            None => value["offset"].as_u64().unwrap() + 1,
+        };
+        let want = end as f64 * 10.0 / 115_200.0;
+        assert!((t - want).abs() < 1e-6, "{t} vs {want}: {line}");
+    }
+}
+
+/// A `--save`d capture replays with the times of its index, and the lines
+/// with times encode back to the same frames.
+#[test]
+fn a_saved_capture_replays_with_its_times() {
+    let dir = scratch("export-save");
+    let saved = dir.join("capture.bin");
+    let input = std::fs::read(cli_common::data("ble_telemetry.bin")).unwrap();
+    let out = run(
+        &[
+            "decode",
+            "omnitiles",
+            "--timestamps",
+            "--baud",
+            "57600",
+            "--chunk",
+            "1",
+            "--save",
+            saved.to_str().unwrap(),
+        ],
+        &input,
+    );
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert_eq!(std::fs::read(&saved).unwrap(), input);
+    let index = std::fs::read_to_string(Path::new(&format!("{}.times", saved.display()))).unwrap();
+    assert!(index.starts_with("# robowire receive times"));
+    // Replay: the same lines, times and all, now from the index.
+    let replay = run(
+        &[
+            "decode",
+            "omnitiles",
+            "--timestamps",
+            saved.to_str().unwrap(),
+        ],
+        b"",
+    );
+    assert_eq!(replay.code, 0, "{}", replay.stderr);
+    assert_eq!(replay.text(), out.text());
+    // Lines with "t" encode as lines without it do.
+    let encoded = run(&["encode", "omnitiles"], &replay.stdout);
+    let plain = run(
+        &["decode", "omnitiles", &data_arg("ble_telemetry.bin")],
+        b"",
+    );
+    let encoded_plain = run(&["encode", "omnitiles"], &plain.stdout);
+    assert_eq!(encoded.code, 0, "{}", encoded.stderr);
+    assert_eq!(encoded.stdout, encoded_plain.stdout);
+}
+
+/// SPI buffers read with the default layouts are refused in every format:
+/// the MCAP recording is complete and holds no message, exit status 3.
+#[test]
+fn refused_spi_buffers_record_nothing() {
+    let dir = scratch("export-spi-refused");
+    let path = dir.join("out.mcap");
+    let input = data_arg("spi_telemetry.bin");
+    let out = run(
+        &[
+            "decode",
+            "omnitiles",
+            "--format",
+            "mcap",
+            "-o",
+            path.to_str().unwrap(),
+            &input,
+        ],
+        b"",
+    );
+    assert_eq!(out.code, 3, "{}", out.stderr);
+    assert!(out.stderr.contains("--layout spi45"), "{}", out.stderr);
+    assert!(mcap_messages(&std::fs::read(&path).unwrap()).is_empty());
+}

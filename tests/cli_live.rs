@@ -1,0 +1,388 @@
+//! `robowire decode --port` and `encode --port` on a pseudo-terminal pair:
+//! the tile and Pico simulators write their captures into the master end at
+//! a set baud rate, the tool reads the slave end. Ctrl-C, a port that
+//! disappears, a missing device, MCAP refused on a terminal.
+
+#![cfg(all(feature = "cli", unix))]
+
+mod cli_common;
+
+#[path = "../examples/pico_sim/sim.rs"]
+#[allow(dead_code)]
+mod pico_sim;
+#[path = "../examples/tile_sim/sim.rs"]
+#[allow(dead_code)]
+mod tile_sim;
+
+use cli_common::{run, scratch};
+use serde_json::Value;
+use serialport::{SerialPort, TTYPort};
+use std::io::{BufRead, BufReader, Read, Write};
+use std::path::Path;
+use std::process::ChildStderr;
+use std::process::{Child, Command, Stdio};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+fn tile_capture() -> Vec<u8> {
+    let captures = tile_sim::captures().unwrap();
+    captures
+        .into_iter()
+        .find(|c| c.name == "ble_telemetry.bin")
+        .unwrap()
+        .bytes
+}
+
+fn pico_capture() -> Vec<u8> {
+    let captures = pico_sim::captures().unwrap();
+    captures
+        .into_iter()
+        .find(|c| c.name == "telemetrix_reports.bin")
+        .unwrap()
+        .bytes
+}
+
+/// One test at a time: a pty pair's descriptors are inherited by every
+/// process spawned while they are open, and a master end held open by
+/// another test's child would never hang up.
+static SERIAL: Mutex<()> = Mutex::new(());
+
+fn serial() -> std::sync::MutexGuard<'static, ()> {
+    SERIAL.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// A pty pair whose descriptors the tool does not inherit (`TTYPort::pair`
+/// opens them without close-on-exec): closing the master hangs the port up.
+fn pty_pair() -> (TTYPort, TTYPort) {
+    use std::os::fd::AsRawFd;
+    let (master, slave) = TTYPort::pair().unwrap();
+    for fd in [master.as_raw_fd(), slave.as_raw_fd()] {
+        // SAFETY: fcntl on descriptors these ports own, changing only their flags.
+        let set = unsafe { libc::fcntl(fd, libc::F_SETFD, libc::FD_CLOEXEC) };
+        assert_eq!(set, 0);
+    }
+    (master, slave)
+}
+
+/// The tool running on a port: its stdout is read as it comes (a full pipe
+/// would stop it), its stderr after its first line.
+struct Running {
+    child: Child,
+    stdout: std::thread::JoinHandle<Vec<u8>>,
+    stderr: BufReader<ChildStderr>,
+}
+
+/// Start the tool on a port and wait until it has opened it (its first
+/// line on stderr says so).
+fn spawn(args: &[&str]) -> Running {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_robowire"))
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut out = child.stdout.take().unwrap();
+    let stdout = std::thread::spawn(move || {
+        let mut bytes = Vec::new();
+        out.read_to_end(&mut bytes).unwrap();
+        bytes
+    });
+    let mut stderr = BufReader::new(child.stderr.take().unwrap());
+    let mut line = String::new();
+    stderr.read_line(&mut line).unwrap();
+    assert!(line.starts_with("robowire: reading "), "{line}");
+    assert!(line.ends_with("baud; Ctrl-C ends the run\n"), "{line}");
+    Running {
+        child,
+        stdout,
+        stderr,
+    }
+}
+
+/// The tool's exit status, stdout and the rest of its stderr.
+fn finish(mut running: Running) -> (Option<i32>, String, String) {
+    let status = running.child.wait().unwrap();
+    let stdout = running.stdout.join().unwrap();
+    let mut rest = String::new();
+    running.stderr.read_to_string(&mut rest).unwrap();
+    (status.code(), String::from_utf8(stdout).unwrap(), rest)
+}
+
+/// Write `bytes` into `master` as a line at `baud` (8N1) would deliver
+/// them: 1 ms of bytes at a time.
+fn send_at(master: &mut TTYPort, bytes: &[u8], baud: u32) {
+    let per_ms = (baud as usize / 10 / 1000).max(1);
+    let start = Instant::now();
+    for (i, piece) in bytes.chunks(per_ms).enumerate() {
+        master.write_all(piece).unwrap();
+        let due = start + Duration::from_millis(i as u64 + 1);
+        if let Some(wait) = due.checked_duration_since(Instant::now()) {
+            std::thread::sleep(wait);
+        }
+    }
+    master.flush().unwrap();
+}
+
+/// Wait until `path` holds `len` bytes (the tool has read them all).
+fn wait_for_size(path: &Path, len: u64) {
+    let deadline = Instant::now() + Duration::from_secs(30);
+    while std::fs::metadata(path).map_or(0, |m| m.len()) < len {
+        let had = std::fs::metadata(path).map_or(0, |m| m.len());
+        assert!(
+            Instant::now() < deadline,
+            "the tool read {had} of {len} bytes"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+fn interrupt(child: &Child) {
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+}
+
+/// The lines of a decode of `bytes` from a file, and the summary line.
+fn from_file(protocol: &str, bytes: &[u8], dir: &Path) -> (Vec<Value>, String) {
+    let path = dir.join("reference.bin");
+    std::fs::write(&path, bytes).unwrap();
+    let out = run(
+        &["decode", protocol, "--errors", path.to_str().unwrap()],
+        b"",
+    );
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    (out.json(), out.stderr)
+}
+
+/// Decode `bytes` live from a pty at `baud`, end the run with Ctrl-C, and
+/// compare with a decode of the same bytes from a file.
+fn live_decode(protocol: &str, bytes: &[u8], baud: u32, name: &str) {
+    let _one = serial();
+    let dir = scratch(&format!("live-{name}"));
+    let saved = dir.join("capture.bin");
+    let (mut master, slave) = pty_pair();
+    let device = slave.name().unwrap();
+    let baud_arg = baud.to_string();
+    let running = spawn(&[
+        "decode",
+        protocol,
+        "--errors",
+        "--port",
+        &device,
+        "--baud",
+        &baud_arg,
+        "--save",
+        saved.to_str().unwrap(),
+    ]);
+    send_at(&mut master, bytes, baud);
+    wait_for_size(&saved, bytes.len() as u64);
+    interrupt(&running.child);
+    let (code, stdout, stderr) = finish(running);
+    assert_eq!(code, Some(0), "{stderr}");
+    let (expected, summary) = from_file(protocol, bytes, &dir);
+    assert_eq!(stderr, summary, "Ctrl-C ends the run with the summary");
+    let lines: Vec<Value> = stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), expected.len(), "no frame lost at {baud} baud");
+    let mut last = 0.0;
+    for (mut line, expected) in lines.into_iter().zip(expected) {
+        let t = line
+            .as_object_mut()
+            .unwrap()
+            .remove("t")
+            .unwrap()
+            .as_f64()
+            .unwrap();
+        assert!(t >= last, "receive times never go back");
+        last = t;
+        assert_eq!(line, expected);
+    }
+    assert_eq!(
+        std::fs::read(&saved).unwrap(),
+        bytes,
+        "the capture is complete"
+    );
+    // The saved capture replays with the times it was received at.
+    let replay = run(
+        &[
+            "decode",
+            protocol,
+            "--errors",
+            "--timestamps",
+            saved.to_str().unwrap(),
+        ],
+        b"",
+    );
+    assert_eq!(replay.text(), stdout);
+    drop(slave);
+}
+
+#[test]
+fn a_tile_decodes_live_at_a_million_baud() {
+    live_decode("omnitiles", &tile_capture(), 1_000_000, "tile");
+}
+
+#[test]
+fn a_pico_decodes_live_at_115200_baud() {
+    live_decode("telemetrix", &pico_capture(), 115_200, "pico");
+}
+
+#[test]
+fn a_port_that_disappears_ends_with_an_error_and_keeps_the_frames() {
+    let _one = serial();
+    let dir = scratch("live-unplugged");
+    let saved = dir.join("capture.bin");
+    let bytes = tile_capture();
+    let half = &bytes[..bytes.len() / 2];
+    let (mut master, slave) = pty_pair();
+    let device = slave.name().unwrap();
+    let running = spawn(&[
+        "decode",
+        "omnitiles",
+        "--port",
+        &device,
+        "--baud",
+        "1000000",
+        "--save",
+        saved.to_str().unwrap(),
+    ]);
+    send_at(&mut master, half, 1_000_000);
+    wait_for_size(&saved, half.len() as u64);
+    drop(master);
+    drop(slave);
+    let (code, stdout, stderr) = finish(running);
+    assert_eq!(code, Some(1), "{stderr}");
+    let stdout = stdout.as_str();
+    let error = stderr.lines().last().unwrap();
+    assert!(
+        error.starts_with(&format!("robowire: {device}: the serial port failed")),
+        "{stderr}"
+    );
+    let (expected, _) = from_file("omnitiles", half, &dir);
+    let frames: Vec<&Value> = expected
+        .iter()
+        .filter(|v| v.get("type").is_some())
+        .collect();
+    // Everything decoded before the port went away is written; the last
+    // frame of the half may still have waited for its confirmation.
+    let lines = stdout.lines().count();
+    assert!(
+        lines + 1 >= frames.len() && lines <= frames.len(),
+        "{lines} of {}",
+        frames.len()
+    );
+    assert_eq!(std::fs::read(&saved).unwrap(), half);
+}
+
+#[test]
+fn a_missing_device_says_so_in_one_line() {
+    let _one = serial();
+    let out = run(
+        &[
+            "decode",
+            "omnitiles",
+            "--port",
+            "/dev/robowire-no-such-port",
+        ],
+        b"",
+    );
+    assert_eq!(out.code, 1);
+    assert_eq!(out.stderr.lines().count(), 1, "{}", out.stderr);
+    assert!(
+        out.stderr
+            .starts_with("robowire: /dev/robowire-no-such-port: cannot open the serial port"),
+        "{}",
+        out.stderr
+    );
+    assert!(out.stdout.is_empty());
+}
+
+#[test]
+fn a_port_with_input_is_a_usage_error() {
+    let _one = serial();
+    let out = run(
+        &["decode", "omnitiles", "--port", "/dev/null", "capture.bin"],
+        b"",
+    );
+    assert_eq!(out.code, 2, "{}", out.stderr);
+    // Neither datagram lines nor the firmware's parser read a port.
+    for mode in [&["--datagrams"][..], &["--from", "host", "--as-firmware"]] {
+        let mut args = vec!["decode", "omnitiles", "--port", "/dev/null"];
+        args.extend_from_slice(mode);
+        let out = run(&args, b"");
+        assert_eq!(out.code, 2, "{args:?}: {}", out.stderr);
+        let refused = out.stderr.contains("cannot be used with") && out.stderr.contains("--port");
+        assert!(refused, "{}", out.stderr);
+    }
+}
+
+#[test]
+fn mcap_is_not_written_to_a_terminal() {
+    let _one = serial();
+    let (_master, slave) = pty_pair();
+    let terminal = std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .open(slave.name().unwrap())
+        .unwrap();
+    let input = cli_common::data_arg("ble_telemetry.bin");
+    let out = Command::new(env!("CARGO_BIN_EXE_robowire"))
+        .args(["decode", "omnitiles", "--format", "mcap", &input])
+        .stdout(Stdio::from(terminal))
+        .stderr(Stdio::piped())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(stderr.contains("-o FILE"), "{stderr}");
+}
+
+#[test]
+fn encode_writes_frames_to_a_port() {
+    let _one = serial();
+    let (mut master, slave) = pty_pair();
+    let device = slave.name().unwrap();
+    let lines = run(
+        &[
+            "decode",
+            "omnitiles",
+            &cli_common::data_arg("ble_telemetry.bin"),
+        ],
+        b"",
+    );
+    let expected = run(&["encode", "omnitiles"], &lines.stdout).stdout;
+    // The other end reads while the tool writes: a pty holds only so much,
+    // and a writer nobody reads from waits for ever.
+    let want = expected.len();
+    master.set_timeout(Duration::from_secs(10)).unwrap();
+    // The master comes back with the bytes: closing it would hang up the
+    // port before the tool has drained it.
+    let reader = std::thread::spawn(move || {
+        let mut received = vec![0u8; want];
+        let read = master.read_exact(&mut received).map(|()| received);
+        (read, master)
+    });
+    let out = run(
+        &[
+            "encode",
+            "omnitiles",
+            "--port",
+            &device,
+            "--baud",
+            "1000000",
+        ],
+        &lines.stdout,
+    );
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert!(out.stdout.is_empty());
+    let (read, master) = reader.join().unwrap();
+    let received = read.expect("the frames, within 10 s");
+    drop(master);
+    assert_eq!(received, expected);
+    drop(slave);
+}
