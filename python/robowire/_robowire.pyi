@@ -15,10 +15,13 @@ _Bytes: TypeAlias = Union[bytes, bytearray, memoryview]
 
 @final
 class Item(Mapping[str, Any]):
-    """A decoded item that builds its dict only when first read (``lazy=True``).
+    """A decoded item that builds its dict only when first read: every item of
+    ``typed=True`` but OmniTiles telemetry, and every item of the deprecated
+    ``lazy=True``.
 
     A read-only mapping with exactly the keys and values of the dict a default
-    decoder returns; equal to that dict.
+    decoder returns; equal to that dict. Fields read as attributes too
+    (``item.speed``).
     """
 
     @property
@@ -33,9 +36,11 @@ class Item(Mapping[str, Any]):
     def __getitem__(self, key: str, /) -> Any: ...
     def __iter__(self) -> Iterator[str]: ...
     def __len__(self) -> int: ...
+    def __getattr__(self, name: str) -> Any: ...
 
-_Decoded: TypeAlias = Mapping[str, Any]
-"""A decoded item: a dict in the JSON-lines schema, or an :class:`Item`."""
+_Decoded: TypeAlias = Any
+"""A decoded item: a dict in the JSON-lines schema, an :class:`Item`, or with
+``typed=True`` also a :class:`robowire.omnitiles.Telemetry`."""
 
 @disjoint_base
 class StreamDecoder:
@@ -67,4 +72,7 @@ class StreamDecoder:
         """Whether rejected candidates are returned as items."""
     @property
     def lazy(self) -> bool:
-        """Whether items are :class:`Item` objects rather than dicts."""
+        """Whether items are :class:`Item` objects (``lazy=True``, deprecated)."""
+    @property
+    def typed(self) -> bool:
+        """Whether items are typed (``typed=True``)."""

@@ -23,6 +23,8 @@ from ._robowire import omnitiles as _native
 
 Decoder = _native.Decoder
 DatagramDecoder = _native.DatagramDecoder
+Telemetry = _native.Telemetry
+Imu = _native.Imu
 encode = _native.encode
 
-__all__ = ["Decoder", "DatagramDecoder", "encode"]
+__all__ = ["Decoder", "DatagramDecoder", "Imu", "Telemetry", "encode"]

@@ -4,7 +4,7 @@
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::engine::{stats_dict, with_bytes, Engine, Items};
+use crate::engine::{stats_dict, with_bytes, Engine, Form, Items};
 
 /// The stream decoder every protocol's ``Decoder`` is: feed it bytes as they
 /// arrive, in chunks of any size, and it returns the decoded items.
@@ -15,8 +15,9 @@ use crate::engine::{stats_dict, with_bytes, Engine, Items};
 /// (``type`` first). With ``errors=True``, rejected candidates are items too:
 /// ``offset`` then the error's keys (``error`` first, no ``type``). The items
 /// never depend on how the bytes were split; call :meth:`finish` at the end of
-/// the input to resolve a frame cut short. With ``lazy=True`` the items are
-/// :class:`robowire.Item` mappings that build their dict only when read.
+/// the input to resolve a frame cut short. With ``typed=True`` the items are
+/// typed objects (:class:`robowire.omnitiles.Telemetry`, else
+/// :class:`robowire.Item`) that read their fields as attributes.
 ///
 /// Construct a protocol's subclass (``robowire.omnitiles.Decoder``, ...), not
 /// this class.
@@ -97,10 +98,18 @@ impl PyStreamDecoder {
     }
 
     /// Whether items are :class:`robowire.Item` objects that build their
-    /// dict when read, rather than dicts.
+    /// dict when read, rather than dicts (``lazy=True``, deprecated).
     #[getter]
     fn lazy(&self) -> bool {
-        self.items.lazy
+        self.items.form == Form::Lazy
+    }
+
+    /// Whether items are typed objects (``typed=True``): an
+    /// :class:`robowire.omnitiles.Telemetry` per telemetry frame, a
+    /// :class:`robowire.Item` for every other message and rejection.
+    #[getter]
+    fn typed(&self) -> bool {
+        self.items.form == Form::Typed
     }
 
     fn __repr__(&self) -> String {

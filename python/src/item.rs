@@ -1,11 +1,12 @@
 //! `robowire.Item`: a decoded item kept in Rust until Python reads it, for
-//! decoders made with `lazy=True`.
+//! decoders made with `typed=True` (messages without a class of their own)
+//! or `lazy=True`.
 
 use pyo3::basic::CompareOp;
-use pyo3::exceptions::PyKeyError;
+use pyo3::exceptions::{PyAttributeError, PyKeyError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
-use pyo3::types::{PyDict, PyIterator};
+use pyo3::types::{PyDict, PyIterator, PyString};
 use robowire::stream::{OwnedFrame, Rejected};
 use serde::Serialize;
 
@@ -40,7 +41,10 @@ impl<E: Serialize + Send + Sync> Erased for Rejected<E> {
 }
 
 /// A decoded item that builds its dict only when it is first read: what a
-/// decoder made with ``lazy=True`` returns. It is a read-only mapping with
+/// decoder made with ``typed=True`` returns for every message without a class
+/// of its own (all but OmniTiles telemetry) and for rejections, and what the
+/// deprecated ``lazy=True`` returns for everything. Fields read as attributes
+/// (``item.speed``) or as keys. It is a read-only mapping with
 /// the same keys and values as the dict a default decoder returns
 /// (``item["type"]``, ``item.get("tof")``, ``dict(item)``, ``item ==
 /// {...}``); :meth:`to_dict` gives a plain dict. Items that are never read
@@ -111,6 +115,28 @@ impl Item {
     /// The ``(key, value)`` pairs, in schema order.
     fn items<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.dict(py)?.call_method0("items")
+    }
+
+    /// A field by attribute (``item.speed``), as ``item["speed"]``.
+    fn __getattr__<'py>(
+        &self,
+        py: Python<'py>,
+        name: &Bound<'py, PyString>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.dict(py)?.get_item(name)?.ok_or_else(|| {
+            let kind = self
+                .dict(py)
+                .ok()
+                .and_then(|d| {
+                    d.get_item("type")
+                        .ok()
+                        .flatten()
+                        .or_else(|| d.get_item("error").ok().flatten())
+                })
+                .map(|k| k.to_string())
+                .unwrap_or_default();
+            PyAttributeError::new_err(format!("{kind} item has no field {name}"))
+        })
     }
 
     fn __getitem__<'py>(

@@ -3,7 +3,8 @@
 //!
 //! One generic binding ([`engine`]) drives robowire's stream engine for every
 //! protocol and turns each event into a dict by pythonizing the library's own
-//! serde form (the `robowire` tool's JSON-lines schema).
+//! serde form (the `robowire` tool's JSON-lines schema), or into a typed item
+//! ([`typed`]).
 
 mod decoder;
 mod engine;
@@ -12,6 +13,7 @@ mod omnitiles;
 mod pixy2;
 mod schema;
 mod telemetrix;
+mod typed;
 
 use pyo3::prelude::*;
 

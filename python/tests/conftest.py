@@ -48,8 +48,11 @@ class Case:
         lines = (DATA / self.file).read_text().splitlines()
         return [read_hex(line) for line in lines if line.strip()]
 
-    def decoder(self, errors: bool = True, lazy: bool = False) -> Any:
-        return self.make(errors=errors, lazy=lazy, **self.kwargs)
+    def decoder(self, errors: bool = True, lazy: bool = False, typed: bool = False) -> Any:
+        if lazy:  # deprecated: tested as long as it exists
+            with pytest.warns(DeprecationWarning, match="typed=True"):
+                return self.make(errors=errors, lazy=True, **self.kwargs)
+        return self.make(errors=errors, typed=typed, **self.kwargs)
 
     def cli_args(self) -> list[str]:
         protocol = {omnitiles: "omnitiles", pixy2: "pixy2", telemetrix: "telemetrix"}[
@@ -127,9 +130,11 @@ def cli_lines(case: Case) -> list[dict[str, Any]]:
     return [json.loads(line) for line in text.splitlines()]
 
 
-def decode_all(case: Case, chunk: Optional[int] = None, errors: bool = True, lazy: bool = False) -> list[Any]:
+def decode_all(
+    case: Case, chunk: Optional[int] = None, errors: bool = True, lazy: bool = False, typed: bool = False
+) -> list[Any]:
     """Decode `case`'s capture with the Python decoder, `chunk` bytes at a time."""
-    decoder = case.decoder(errors=errors, lazy=lazy)
+    decoder = case.decoder(errors=errors, lazy=lazy, typed=typed)
     if case.datagrams:
         return [item for datagram in case.datagram_list() for item in decoder.decode(datagram)]
     data = case.input()

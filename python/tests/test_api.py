@@ -68,7 +68,7 @@ def test_classes_and_docs() -> None:
         assert "ValueError" in (function.__doc__ or "")
     assert "chunk" in (robowire.StreamDecoder.feed.__doc__ or "")
     if sys.version_info >= (3, 10):  # PyO3 gives classes no text signature on 3.9
-        assert omnitiles.Decoder.__text_signature__ == '(source="any", layouts=None, errors=False, lazy=False)'
+        assert omnitiles.Decoder.__text_signature__ == '(source="any", layouts=None, errors=False, lazy=False, typed=False)'
     assert str(inspect.signature(telemetrix.encode)) == "(message, /, dialect='mirte13')"
     feed = inspect.signature(robowire.StreamDecoder.feed).parameters["data"]
     assert feed.kind is inspect.Parameter.POSITIONAL_ONLY
@@ -147,6 +147,7 @@ def test_stats_keys() -> None:
 # ---------------------------------------------------------------- lazy items
 
 
+@pytest.mark.filterwarnings("ignore:lazy=True is deprecated:DeprecationWarning")
 def test_lazy_item_is_a_read_only_mapping() -> None:
     (item,) = omnitiles.Decoder(lazy=True).feed(EXTEND)
     assert isinstance(item, robowire.Item)
@@ -170,6 +171,7 @@ def test_lazy_item_is_a_read_only_mapping() -> None:
         item["speed"] = 1  # type: ignore[index]
 
 
+@pytest.mark.filterwarnings("ignore:lazy=True is deprecated:DeprecationWarning")
 def test_lazy_items_encode_back() -> None:
     (item,) = omnitiles.Decoder(lazy=True).feed(EXTEND)
     assert omnitiles.encode(item) == EXTEND
