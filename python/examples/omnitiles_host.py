@@ -145,7 +145,7 @@ async def main() -> int:
     ok = (
         len(seen) == args.frames
         and [t["uwb"][0] for t in seen] == [1500 + n for n in range(args.frames)]
-        and stats["checksum_errors"] == 1
+        and stats["checksum_failures"] == 1
         and [c["type"] for c in tile.commands] == ["m1_extend", "m1_brake"]
     )
     print("ok" if ok else "FAILED")

@@ -6,6 +6,7 @@ from typing import Any, Union
 from typing_extensions import TypeAlias, disjoint_base, final
 
 from . import omnitiles as omnitiles, pixy2 as pixy2, telemetrix as telemetrix
+from ._stats import Stats
 
 __all__ = ["Item", "StreamDecoder", "__version__", "omnitiles", "pixy2", "telemetrix"]
 __version__: str
@@ -58,12 +59,15 @@ class StreamDecoder:
         """End of input: the items a buffered partial frame resolves to."""
     def clear(self) -> None:
         """Forget a buffered partial frame (its bytes count as skipped)."""
+    def feed_array(self, data: _Bytes, /) -> dict[str, Any]:
+        """Decode the next chunk into numpy structured arrays, one per message
+        kind (OmniTiles only; needs numpy)."""
     def _count(self, data: _Bytes, /) -> int:
         """Decode as :meth:`feed` does, building no items; the frames decoded."""
     @property
-    def stats(self) -> dict[str, int]:
-        """Counters: bytes, frames, frame_bytes, skipped, checksum_errors,
-        rejected, malformed, superseded."""
+    def stats(self) -> Stats:
+        """Counters: bytes, frames, frame_bytes, skipped, checksum_failures,
+        other_rejections, malformed, superseded."""
     @property
     def buffered(self) -> int:
         """Bytes held as the start of an unfinished frame."""

@@ -6,6 +6,7 @@ from typing import Any, Literal, Optional, Union
 from typing_extensions import Self, TypeAlias, final
 
 from ._robowire import StreamDecoder, _Bytes, _Decoded
+from ._stats import Stats
 
 _Source: TypeAlias = Literal["tile", "host", "any"]
 _Layouts: TypeAlias = Union[str, Iterable[str], None]
@@ -120,7 +121,7 @@ class DatagramDecoder:
     def decode(self, datagram: _Bytes, /) -> list[_Decoded]:
         """The items of one datagram, in order."""
     @property
-    def stats(self) -> dict[str, int]: ...
+    def stats(self) -> Stats: ...
     @property
     def errors(self) -> bool: ...
     @property

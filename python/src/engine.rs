@@ -6,15 +6,17 @@
 //! Each event becomes a Python dict by pythonizing the library's own
 //! [`OwnedFrame`] or [`Rejected`]; nothing here knows any message.
 
-use pyo3::exceptions::{PyDeprecationWarning, PyTypeError, PyValueError};
+use pyo3::exceptions::{PyDeprecationWarning, PyNotImplementedError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyByteArray, PyBytes, PyDict, PyList, PyMapping, PyString};
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyByteArray, PyBytes, PyDict, PyList, PyMapping, PyString, PyType};
 use pythonize::{depythonize, pythonize};
 use robowire::stream::{owned_event, FrameRules, OwnedEvent, StreamDecoder};
 use robowire::{Encode, Stats};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
+use crate::array::{Tables, Tabular};
 use crate::item::Item;
 use crate::schema::Adapt;
 use crate::typed::{PyTelemetry, Typed};
@@ -29,6 +31,13 @@ pub trait Engine: Send + Sync {
     /// Decode `data` without building any Python object; the number of
     /// frames parsed (what a benchmark compares the full path with).
     fn count(&mut self, data: &[u8]) -> usize;
+    /// Decode `data` into `tables` (see [`crate::array`]); rejections are
+    /// only counted. `NotImplementedError`, before decoding anything, for a
+    /// protocol without tables.
+    fn feed_table(&mut self, data: &[u8], tables: &mut Tables) -> PyResult<()> {
+        let _ = (data, tables);
+        Err(no_tables())
+    }
     /// The counters so far.
     fn stats(&self) -> Stats;
     /// Bytes held as the start of an unfinished candidate.
@@ -53,7 +62,7 @@ impl<R, const N: usize> Stream<R, N> {
 impl<R, const N: usize> Engine for Stream<R, N>
 where
     R: FrameRules + Send + Sync,
-    R::Owned: Typed,
+    R::Owned: Typed + Tabular,
     R::Error: Serialize + Send + Sync + 'static,
 {
     fn feed(&mut self, data: &[u8], items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
@@ -86,6 +95,19 @@ where
         frames
     }
 
+    fn feed_table(&mut self, data: &[u8], tables: &mut Tables) -> PyResult<()> {
+        if !R::Owned::TABULAR {
+            return Err(no_tables());
+        }
+        let mut input = data;
+        while let Some(event) = self.0.decode(&mut input) {
+            if let Ok(frame) = owned_event::<R>(event) {
+                R::Owned::record(&frame, tables);
+            }
+        }
+        Ok(())
+    }
+
     fn stats(&self) -> Stats {
         self.0.stats()
     }
@@ -108,6 +130,13 @@ pub enum Form {
     Lazy,
     /// Typed items (`typed=True`): see [`crate::typed`].
     Typed,
+}
+
+/// The error of `feed_array` on a protocol without tables.
+fn no_tables() -> PyErr {
+    PyNotImplementedError::new_err(
+        "feed_array has tables for OmniTiles only so far; use feed(...) with typed=True",
+    )
 }
 
 /// How a decoder hands out its events.
@@ -213,10 +242,25 @@ pub fn with_bytes<T>(data: &Bound<'_, PyAny>, f: impl FnOnce(&[u8]) -> T) -> PyR
     )))
 }
 
-/// The counters as a dict: `bytes`, `frames`, `frame_bytes`, `skipped`,
-/// `checksum_errors`, `rejected`, `malformed`, `superseded`.
-pub fn stats_dict<'py>(py: Python<'py>, stats: &Stats) -> PyResult<Bound<'py, PyDict>> {
-    Ok(to_python(py, stats)?.cast_into::<PyDict>()?)
+/// The counters as a `robowire._stats.Stats` dict, in the words of the
+/// tool's summary line (the library's `Display` for [`Stats`]):
+/// `checksum_failures` is `checksum_errors`, `other_rejections` is `rejected`
+/// and `superseded` together.
+pub fn stats_dict<'py>(py: Python<'py>, stats: &Stats) -> PyResult<Bound<'py, PyAny>> {
+    static STATS: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+    let counters = [
+        ("bytes", stats.bytes),
+        ("frames", stats.frames),
+        ("frame_bytes", stats.frame_bytes),
+        ("skipped", stats.skipped),
+        ("checksum_failures", stats.checksum_errors),
+        ("other_rejections", stats.rejected + stats.superseded),
+        ("malformed", stats.malformed),
+        ("superseded", stats.superseded),
+    ];
+    STATS
+        .import(py, "robowire._stats", "Stats")?
+        .call1((counters.to_vec(),))
 }
 
 /// A `ValueError` for an option value that is not one of `allowed`.

@@ -6,6 +6,7 @@
 //! serde form (the `robowire` tool's JSON-lines schema), or into a typed item
 //! ([`typed`]).
 
+mod array;
 mod decoder;
 mod engine;
 mod item;

@@ -2,7 +2,7 @@
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict, PyList, PyString};
+use pyo3::types::{PyBytes, PyList, PyString};
 use robowire::omnitiles::{
     Both, DatagramDecoder, Device, Framing, Host, Layouts, Message, Side, BOTH_BUFFER,
     DEVICE_BUFFER, HOST_BUFFER,
@@ -208,7 +208,7 @@ impl OmniDatagramDecoder {
     /// Link-quality counters over every datagram so far (see
     /// :attr:`robowire.StreamDecoder.stats`).
     #[getter]
-    fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         stats_dict(py, &self.inner.stats())
     }
 

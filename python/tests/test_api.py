@@ -110,7 +110,7 @@ def test_finish_reports_a_cut_frame_and_resets() -> None:
     decoder = omnitiles.Decoder(source="host", errors=True)
     assert decoder.feed(EXTEND[:2]) == []
     assert decoder.buffered == 2
-    assert decoder.finish() == [{"offset": 0, "len": 2, "error": "truncated"}] or decoder.stats["rejected"] == 1
+    assert decoder.finish() == [{"offset": 0, "len": 2, "error": "truncated"}] or decoder.stats["other_rejections"] == 1
     assert decoder.buffered == 0
     assert decoder.feed(PING) == [{"offset": 2, "len": 3, "type": "ping"}]
 
@@ -133,15 +133,32 @@ def test_errors_flag() -> None:
     assert items[0] == {"offset": 0, "error": "checksum", "expected": 0xF8, "found": 0xF7}
     assert items[-1]["type"] == "ping"
     assert quiet.stats == loud.stats
-    assert quiet.stats["checksum_errors"] == 1
+    assert quiet.stats["checksum_failures"] == 1
     assert loud.errors and not quiet.errors
 
 
 def test_stats_keys() -> None:
     stats = omnitiles.Decoder().stats
-    assert set(stats) == {
-        "bytes", "frames", "frame_bytes", "skipped", "checksum_errors", "rejected", "malformed", "superseded",
-    }
+    assert list(stats) == [
+        "bytes", "frames", "frame_bytes", "skipped", "checksum_failures", "other_rejections", "malformed",
+        "superseded",
+    ]
+    assert isinstance(stats, dict)
+
+
+def test_stats_old_keys_are_deprecated_aliases() -> None:
+    # A bad checksum, an unknown id (a5 99 ...), a ping.
+    decoder = omnitiles.Decoder(source="host")
+    decoder.feed(bytes.fromhex("a5 30 c8 f7 a5 99 99 a5 50 50"))
+    stats = decoder.stats
+    assert stats["checksum_failures"] == 1 and stats["other_rejections"] >= 1
+    with pytest.warns(DeprecationWarning, match="checksum_failures"):
+        assert stats["checksum_errors"] == stats["checksum_failures"]
+    with pytest.warns(DeprecationWarning, match="other_rejections"):
+        assert stats["rejected"] == stats["other_rejections"] - stats["superseded"]
+    assert "rejected" not in stats
+    with pytest.raises(KeyError):
+        stats["nope"]
 
 
 # ---------------------------------------------------------------- lazy items
