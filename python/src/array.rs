@@ -8,8 +8,7 @@
 
 use std::collections::BTreeMap;
 
-use numpy::{PyArray1, PyArrayDescr};
-use pyo3::intern;
+use numpy::{npyffi, PyArray1, PyArrayDescr, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList};
@@ -52,7 +51,21 @@ impl Tables {
         for (kind, table) in self.tables {
             let dtype = dtype_of(py, kind, table.dtype)?;
             let bytes = PyArray1::<u8>::from_vec(py, table.records);
-            arrays.set_item(kind, bytes.call_method1(intern!(py, "view"), (dtype,))?)?;
+            // SAFETY: `bytes` is a contiguous 1-D u8 array whose length is a
+            // whole number of records of `dtype`, so the view is valid;
+            // PyArray_View steals the reference to the descriptor it is given
+            // (a new one here) and returns a new reference or NULL.
+            let array = unsafe {
+                let descr = dtype.into_ptr().cast::<npyffi::PyArray_Descr>();
+                let view = npyffi::PY_ARRAY_API.PyArray_View(
+                    py,
+                    bytes.as_array_ptr(),
+                    descr,
+                    std::ptr::null_mut(),
+                );
+                Bound::from_owned_ptr_or_err(py, view)?
+            };
+            arrays.set_item(kind, array)?;
         }
         Ok(arrays)
     }

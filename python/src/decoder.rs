@@ -3,6 +3,7 @@
 
 use pyo3::exceptions::PyImportError;
 use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList};
 
 use crate::array::Tables;
@@ -64,12 +65,15 @@ impl PyStreamDecoder {
     #[pyo3(signature = (data, /))]
     fn feed_array<'py>(&mut self, data: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
         let py = data.py();
-        // Import numpy first, so that a missing numpy loses no bytes.
-        py.import("numpy").map_err(|e| {
-            PyImportError::new_err(format!(
-                "feed_array needs numpy (pip install robowire[numpy]): {e}"
-            ))
-        })?;
+        // Import numpy first (once), so that a missing numpy loses no bytes.
+        static NUMPY: PyOnceLock<Py<PyModule>> = PyOnceLock::new();
+        NUMPY
+            .get_or_try_init(py, || py.import("numpy").map(Bound::unbind))
+            .map_err(|e| {
+                PyImportError::new_err(format!(
+                    "feed_array needs numpy (pip install robowire[numpy]): {e}"
+                ))
+            })?;
         let mut tables = Tables::default();
         with_bytes(data, |bytes| self.engine.feed_table(bytes, &mut tables))??;
         tables.into_arrays(py)
