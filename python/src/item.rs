@@ -4,6 +4,7 @@
 
 use pyo3::basic::CompareOp;
 use pyo3::exceptions::{PyAttributeError, PyKeyError};
+use pyo3::ffi;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyIterator, PyString};
@@ -11,6 +12,9 @@ use robowire::stream::{OwnedFrame, Rejected};
 use serde::Serialize;
 
 use crate::engine::to_python;
+
+/// The names of `Item`'s own attributes, which fields do not shadow.
+const METHODS: [&str; 6] = ["offset", "to_dict", "get", "keys", "values", "items"];
 
 /// A frame or a rejection, type-erased.
 pub trait Erased: Send + Sync {
@@ -117,26 +121,45 @@ impl Item {
         self.dict(py)?.call_method0("items")
     }
 
-    /// A field by attribute (``item.speed``), as ``item["speed"]``.
-    fn __getattr__<'py>(
-        &self,
-        py: Python<'py>,
+    /// A field by attribute (``item.speed``), as ``item["speed"]``. Looked
+    /// up before the class's attributes (one dict lookup, no exception on
+    /// the way), except for dunder names and the methods.
+    fn __getattribute__<'py>(
+        slf: &Bound<'py, Self>,
         name: &Bound<'py, PyString>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.dict(py)?.get_item(name)?.ok_or_else(|| {
-            let kind = self
-                .dict(py)
-                .ok()
-                .and_then(|d| {
-                    d.get_item("type")
-                        .ok()
-                        .flatten()
-                        .or_else(|| d.get_item("error").ok().flatten())
-                })
-                .map(|k| k.to_string())
-                .unwrap_or_default();
-            PyAttributeError::new_err(format!("{kind} item has no field {name}"))
-        })
+        let py = slf.py();
+        let item = slf.get();
+        let text = name.to_cow()?;
+        let own = text.starts_with("__") || METHODS.contains(&&*text);
+        if !own {
+            if let Some(value) = item.dict(py)?.get_item(name)? {
+                return Ok(value);
+            }
+        }
+        // SAFETY: both pointers are live objects for the call, which
+        // returns a new reference or NULL with an exception set.
+        unsafe {
+            Bound::from_owned_ptr_or_err(
+                py,
+                ffi::PyObject_GenericGetAttr(slf.as_ptr(), name.as_ptr()),
+            )
+        }
+    }
+
+    /// The error for an attribute the item does not have (PyO3 calls this
+    /// when `__getattribute__` raises `AttributeError`).
+    fn __getattr__(&self, py: Python<'_>, name: &Bound<'_, PyString>) -> PyResult<()> {
+        let dict = self.dict(py)?;
+        let kind = match dict.get_item("type")? {
+            Some(kind) => kind,
+            None => dict
+                .get_item("error")?
+                .unwrap_or_else(|| py.None().into_bound(py)),
+        };
+        Err(PyAttributeError::new_err(format!(
+            "{kind} item has no field {name}"
+        )))
     }
 
     fn __getitem__<'py>(
