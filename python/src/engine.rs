@@ -19,7 +19,7 @@ use serde::Serialize;
 use crate::array::{Tables, Tabular};
 use crate::item::Item;
 use crate::schema::Adapt;
-use crate::typed::{PyTelemetry, Typed};
+use crate::typed::{untracked, PyTelemetry, Typed};
 
 /// A stream decoder of any protocol, as the Python classes use it.
 pub trait Engine: Send + Sync {
@@ -206,9 +206,9 @@ where
         (Ok(frame), Form::Dict) => out.append(to_python(py, &frame)?),
         (Err(rejected), Form::Dict) => out.append(to_python(py, &rejected)?),
         (Ok(frame), Form::Typed) => out.append(R::Owned::typed(py, frame)?),
-        (Ok(frame), Form::Lazy) => out.append(Bound::new(py, Item::new(Box::new(frame)))?),
+        (Ok(frame), Form::Lazy) => out.append(untracked(py, Item::new(Box::new(frame)))?),
         (Err(rejected), Form::Lazy | Form::Typed) => {
-            out.append(Bound::new(py, Item::new(Box::new(rejected)))?)
+            out.append(untracked(py, Item::new(Box::new(rejected)))?)
         }
     }
 }

@@ -19,23 +19,35 @@ use crate::engine::to_python;
 use crate::item::Item;
 use crate::schema::exact_f64;
 
+/// A new Python object of class `T`, not tracked by the garbage collector.
+///
+/// For the item classes, which have no `__traverse__`: the collector can
+/// find nothing through them (an `Item`'s dict, once built, is not visited
+/// either way), so tracking them only makes every collection walk over each
+/// item a host keeps.
+pub fn untracked<T: pyo3::PyClass + Into<PyClassInitializer<T>>>(
+    py: Python<'_>,
+    value: T,
+) -> PyResult<Bound<'_, PyAny>> {
+    let item = Bound::new(py, value)?;
+    // SAFETY: `item` is a live object of a GC type (PyO3 gives every class
+    // one); untracking it only keeps the collector from visiting it, and its
+    // deallocation may untrack it again.
+    unsafe { pyo3::ffi::PyObject_GC_UnTrack(item.as_ptr().cast()) };
+    Ok(item.into_any())
+}
+
 /// How a library message becomes a typed item.
 pub trait Typed: Serialize + Send + Sync + Sized + 'static {
     /// The typed item of `frame`: an [`Item`] unless a message has a class.
     fn typed(py: Python<'_>, frame: OwnedFrame<Self>) -> PyResult<Bound<'_, PyAny>> {
-        Ok(Bound::new(py, Item::new(Box::new(frame)))?.into_any())
+        untracked(py, Item::new(Box::new(frame)))
     }
 }
 
 impl Typed for Telemetry {
     fn typed(py: Python<'_>, frame: OwnedFrame<Self>) -> PyResult<Bound<'_, PyAny>> {
-        let item = Bound::new(py, PyTelemetry::from(frame))?;
-        // SAFETY: `item` is a live object of a GC type (PyO3 gives every class
-        // one); it refers to no Python object, so it can be in no reference
-        // cycle and the collector has nothing to find through it. Untracking
-        // an object twice is allowed (its deallocation untracks it again).
-        unsafe { pyo3::ffi::PyObject_GC_UnTrack(item.as_ptr().cast()) };
-        Ok(item.into_any())
+        untracked(py, PyTelemetry::from(frame))
     }
 }
 
@@ -50,7 +62,7 @@ impl Typed for Message {
                     message: t,
                 },
             ),
-            Message::Command(_) => Ok(Bound::new(py, Item::new(Box::new(frame)))?.into_any()),
+            Message::Command(_) => untracked(py, Item::new(Box::new(frame))),
         }
     }
 }
