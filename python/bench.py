@@ -461,6 +461,11 @@ def main() -> int:
         row("dicts, kept, all read", " all", timed(lambda: ours().feed, stream, r, read=all_d))
         if arrays:
             row("feed_array, kept", "", timed(lambda: ours().feed_array, stream, r, count=array_frames))
+            row(
+                "feed_array, 64 KiB chunks, kept",
+                "",
+                timed(lambda: ours().feed_array, stream, r, count=array_frames, chunk=16 * CHUNK),
+            )
         row("typed, one feed, kept", "", timed(lambda: ours(typed=True).feed, stream, r, chunk=len(stream)))
         row("dicts, one feed, kept", "", timed(lambda: ours().feed, stream, r, chunk=len(stream)))
         row("typed, dropped", None, timed(lambda: ours(typed=True).feed, stream, r, keep=False))
@@ -472,9 +477,9 @@ def main() -> int:
             ok = False
         rate = {label: frames / cpu for label, _, (frames, cpu) in rows}
         print(f"\n{name}: {args.frames} frames, {len(stream) / 1e6:.1f} MB")
-        print(f"  {'':31} {'frames/CPU-s':>13} {'vs plain':>9} {'vs tuned':>9}")
+        print(f"  {'':33} {'frames/CPU-s':>13} {'vs plain':>9} {'vs tuned':>9}")
         for label, base, _ in rows:
-            line = f"  {label:31} {rate[label] / 1e6:>11.2f} M"
+            line = f"  {label:33} {rate[label] / 1e6:>11.2f} M"
             if base is not None:
                 suffix = ", all read" if base == " all" else ""
                 line += f" {rate[label] / rate['plain Python, kept' + suffix]:>8.1f}x"
