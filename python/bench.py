@@ -1,16 +1,19 @@
 #!/usr/bin/env python3
-"""Frames per second from Python: robowire beside a pure-Python stream parser.
+"""Frames per CPU-second from Python: robowire beside pure-Python stream parsers.
 
 Two streams, each fed in 4 KiB chunks, as a host reads a serial port:
 
-* OmniTiles: 53-byte BLE telemetry frames (the 300 frames of
+* OmniTiles: 53-byte BLE telemetry frames (the frames of
   tests/data/ble_telemetry.bin, cycled);
 * Telemetrix: the reports a mirte robot streams (the digital, analog, sonar
   and encoder reports of tests/data/telemetrix_reports.bin, cycled).
 
-For each, robowire's ``Decoder`` and two pure-Python parsers of the same
-framing, written below, decode the same bytes in the same run and give the
-same dicts (the CLI's JSON-lines schema):
+As a host uses them, every item is kept in a list with the garbage collector
+on, and the run reads no field, a few (OmniTiles: ``m1_pos`` and ``imu.az``;
+Telemetrix: ``type`` and the first field) or all of them. The same runs with
+the items dropped at once are there for comparison. In the same run, two
+pure-Python parsers of the same framing, written below, decode the same bytes
+into the same dicts (the CLI's JSON-lines schema), as the baselines:
 
 * the *plain* parser is the shape most Python hosts have (the OmniTiles SDK,
   tmx-pico-aio): a state machine fed one byte at a time;
@@ -19,25 +22,27 @@ same dicts (the CLI's JSON-lines schema):
 
 Both check what robowire checks on a clean stream (start byte, id, length,
 checksum) and keep a cut frame across chunks; neither has robowire's resync
-verification. Each figure is the best of ``--repeat`` runs, by wall clock and by the
-process's CPU time (on a shared machine the CPU time is the steadier one;
-the ratios use it). Two more lines per protocol: robowire with
-``lazy=True`` (items that build their dict only when read; none is read
-here), and robowire decoding without building any Python object
-(``_count``): the difference to the first line is the cost of the dicts.
+verification. Each figure is the median of ``--repeat`` runs of the process's
+CPU time (the machine may be shared; CPU time is steadier than the wall
+clock), and every ratio is to a baseline measured in the same run, kept and
+read alike.
 
-Run from the repository root after installing the package::
+Run from the repository root after installing the package (numpy for the
+``feed_array`` row)::
 
+    pip install './python[numpy]'
     python python/bench.py            # or: --frames 200000 --repeat 5
 """
 
 from __future__ import annotations
 
 import argparse
+import gc
 import glob
 import math
 import os
 import platform
+import statistics
 import struct
 import sys
 import time
@@ -275,27 +280,110 @@ def telemetrix_stream(frames: int) -> bytes:
     return b"".join(raw[k % len(raw)] for k in range(frames))
 
 
+# --------------------------------------------------------------------------
+# What a host reads of each item
+# --------------------------------------------------------------------------
+
+
+def omni_few_typed(t: Any) -> Any:
+    return t.m1_pos, t.imu.az
+
+
+def omni_few_dict(d: Any) -> Any:
+    return d["m1_pos"], d["imu"]["az"]
+
+
+def omni_all_typed(t: Any) -> Any:
+    imu = t.imu
+    return (
+        t.offset, t.len, t.type, t.layout, t.m1_pos, t.m2_pos, t.uwb, t.tof,
+        imu.ax, imu.ay, imu.az, imu.gx, imu.gy, imu.gz, t.m1_adcs, t.m2_adcs,
+    )
+
+
+def omni_all_dict(d: Any) -> Any:
+    imu = d["imu"]
+    return (
+        d["offset"], d["len"], d["type"], d["layout"], d["m1_pos"], d["m2_pos"], d["uwb"], d["tof"],
+        imu["ax"], imu["ay"], imu["az"], imu["gx"], imu["gy"], imu["gz"], d["m1_adcs"], d["m2_adcs"],
+    )
+
+
+_TMX_FIELDS = {
+    "digital_report": ("pin", "value"),
+    "analog_report": ("pin", "value"),
+    "sonar_distance": ("trig", "echo", "cm"),
+    "encoder_report": ("pin_a", "steps"),
+}
+
+
+def tmx_few_typed(t: Any) -> Any:
+    kind = t.type
+    return kind, getattr(t, _TMX_FIELDS[kind][0])
+
+
+def tmx_few_dict(d: Any) -> Any:
+    kind = d["type"]
+    return kind, d[_TMX_FIELDS[kind][0]]
+
+
+def tmx_all_typed(t: Any) -> Any:
+    kind = t.type
+    return t.offset, t.len, kind, [getattr(t, f) for f in _TMX_FIELDS[kind]]
+
+
+def tmx_all_dict(d: Any) -> Any:
+    kind = d["type"]
+    return d["offset"], d["len"], kind, [d[f] for f in _TMX_FIELDS[kind]]
+
+
+# --------------------------------------------------------------------------
+# Timing
+# --------------------------------------------------------------------------
+
+Feed = Callable[[bytes], Any]
+
+
 def timed(
-    feed: Callable[[], Callable[[bytes], Any]], stream: bytes, repeat: int, count: bool = False
-) -> tuple[int, float, float]:
-    """(frames, best wall seconds, best CPU seconds) over `repeat` runs."""
-    frames, best_wall, best_cpu = 0, math.inf, math.inf
+    make: Callable[[], Feed],
+    stream: bytes,
+    repeat: int,
+    keep: bool = True,
+    read: Callable[[Any], Any] | None = None,
+    chunk: int = CHUNK,
+    count: Callable[[Any], int] = len,
+) -> tuple[int, float]:
+    """(frames, median CPU seconds) of `repeat` runs that feed `stream` in
+    `chunk`-byte pieces, keep every item (or drop it) and `read` each one."""
+    gc.enable()
+    times = []
+    frames = 0
     for _ in range(repeat):
-        feed_fn = feed()
+        feed = make()
+        kept: list[Any] = []
         frames = 0
         cpu = time.process_time()
-        wall = time.perf_counter()
-        for start in range(0, len(stream), CHUNK):
-            got = feed_fn(stream[start : start + CHUNK])
-            frames += got if count else len(got)
-        best_wall = min(best_wall, time.perf_counter() - wall)
-        best_cpu = min(best_cpu, time.process_time() - cpu)
-    return frames, best_wall, best_cpu
+        for start in range(0, len(stream), chunk):
+            items = feed(stream[start : start + chunk])
+            frames += count(items)
+            if read is not None:
+                for item in items:
+                    read(item)
+            if keep:
+                kept.append(items)
+        times.append(time.process_time() - cpu)
+        del kept, items
+        gc.collect()
+    return frames, statistics.median(times)
+
+
+def array_frames(arrays: dict[str, Any]) -> int:
+    return sum(len(a) for a in arrays.values())
 
 
 def same_items(ours: list[dict[str, Any]], theirs: list[dict[str, Any]]) -> bool:
-    """Whether two parsers agree (floats to f32 precision: the baseline keeps
-    struct's widened f32, robowire the JSON decimal)."""
+    """Whether two parsers agree (both give an f32 as its exact value; the
+    comparison allows for f32 precision all the same)."""
 
     def close(a: Any, b: Any) -> bool:
         if isinstance(a, float) and isinstance(b, float):
@@ -309,58 +397,94 @@ def same_items(ours: list[dict[str, Any]], theirs: list[dict[str, Any]]) -> bool
     return len(ours) == len(theirs) and all(close(a, b) for a, b in zip(ours, theirs))
 
 
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--frames", type=int, default=200_000, help="frames per stream (default 200000)")
-    parser.add_argument("--repeat", type=int, default=5, help="runs per decoder; the best counts (default 5)")
+    parser.add_argument("--repeat", type=int, default=5, help="runs per row; the median counts (default 5)")
     args = parser.parse_args()
+    try:
+        import numpy  # noqa: F401
+
+        has_numpy = True
+    except ImportError:
+        has_numpy = False
 
     print(f"Python {platform.python_version()} on {platform.machine()}, {os.cpu_count()} CPUs; ", end="")
-    print(f"{args.frames} frames per stream, {CHUNK}-byte chunks, best of {args.repeat}")
+    print(f"{args.frames} frames per stream, {CHUNK}-byte chunks, median of {args.repeat}, GC on")
     cases = [
         (
             "OmniTiles 53-byte telemetry",
             omnitiles_stream(args.frames),
-            lambda lazy=False: omnitiles.Decoder(source="tile", layouts="ble53", lazy=lazy),
+            lambda **kw: omnitiles.Decoder(source="tile", layouts="ble53", **kw),
             PlainOmniTiles,
             TunedOmniTiles,
+            (omni_few_typed, omni_all_typed, omni_few_dict, omni_all_dict),
+            has_numpy,
         ),
         (
             "Telemetrix reports",
             telemetrix_stream(args.frames),
-            lambda lazy=False: telemetrix.Decoder(source="pico", lazy=lazy),
+            lambda **kw: telemetrix.Decoder(source="pico", **kw),
             PlainTelemetrix,
             TunedTelemetrix,
+            (tmx_few_typed, tmx_all_typed, tmx_few_dict, tmx_all_dict),
+            False,
         ),
     ]
     ok = True
-    for name, stream, ours, plain, tuned in cases:
+    for name, stream, ours, plain, tuned, (few_t, all_t, few_d, all_d), arrays in cases:
         first = stream[: 100 * CHUNK]
         for baseline in (plain, tuned):
             if not same_items(ours().feed(first), baseline().feed(first)):
                 print(f"{name}: robowire and {baseline.__name__} disagree", file=sys.stderr)
                 ok = False
-        runs = [
-            ("robowire", timed(lambda: ours().feed, stream, args.repeat)),
-            ("robowire, lazy=True", timed(lambda: ours(lazy=True).feed, stream, args.repeat)),
-            ("plain Python", timed(lambda: plain().feed, stream, args.repeat)),
-            ("tuned Python", timed(lambda: tuned().feed, stream, args.repeat)),
-            ("robowire, no items", timed(lambda: ours()._count, stream, args.repeat, count=True)),
-        ]
-        if any(frames != args.frames for _, (frames, _, _) in runs):
-            print(f"{name}: frame counts differ: {[r[1][0] for r in runs]}", file=sys.stderr)
+        if ours(typed=True).feed(first) != ours().feed(first):
+            print(f"{name}: typed items and dicts disagree", file=sys.stderr)
             ok = False
-        mb = len(stream) / 1e6
-        print(f"\n{name}: {args.frames} frames, {mb:.1f} MB; frames/s by wall clock and by CPU time")
-        for label, (frames, wall, cpu) in runs:
-            print(
-                f"  {label:19} {frames / wall:>12,.0f} frames/s wall {frames / cpu:>12,.0f} frames/s CPU"
-                f"  ({mb / cpu:7.1f} MB/s CPU)"
+        r = args.repeat
+        # (label, baseline row for the ratios or None, (frames, CPU seconds))
+        rows: list[tuple[str, str | None, tuple[int, float]]] = []
+
+        def row(label: str, base: str | None, result: tuple[int, float]) -> None:
+            rows.append((label, base, result))
+
+        row("plain Python, kept", None, timed(lambda: plain().feed, stream, r))
+        row("tuned Python, kept", None, timed(lambda: tuned().feed, stream, r))
+        row("plain Python, kept, all read", None, timed(lambda: plain().feed, stream, r, read=all_d))
+        row("tuned Python, kept, all read", None, timed(lambda: tuned().feed, stream, r, read=all_d))
+        row("typed, kept", "", timed(lambda: ours(typed=True).feed, stream, r))
+        row("typed, kept, a few read", "", timed(lambda: ours(typed=True).feed, stream, r, read=few_t))
+        row("typed, kept, all read", " all", timed(lambda: ours(typed=True).feed, stream, r, read=all_t))
+        row("dicts, kept", "", timed(lambda: ours().feed, stream, r))
+        row("dicts, kept, all read", " all", timed(lambda: ours().feed, stream, r, read=all_d))
+        if arrays:
+            row("feed_array, kept", "", timed(lambda: ours().feed_array, stream, r, count=array_frames))
+            row(
+                "feed_array, 64 KiB chunks, kept",
+                "",
+                timed(lambda: ours().feed_array, stream, r, count=array_frames, chunk=16 * CHUNK),
             )
-        rw, lazy, plain_run, tuned_run, bare = (r[1][2] for r in runs)
-        print(f"  robowire / plain Python (CPU): {plain_run / rw:.1f}x dicts, {plain_run / lazy:.1f}x lazy")
-        print(f"  robowire / tuned Python (CPU): {tuned_run / rw:.1f}x dicts, {tuned_run / lazy:.1f}x lazy")
-        print(f"  building the dicts takes {1 - bare / rw:.0%} of robowire's CPU time")
+        row("typed, one feed, kept", "", timed(lambda: ours(typed=True).feed, stream, r, chunk=len(stream)))
+        row("dicts, one feed, kept", "", timed(lambda: ours().feed, stream, r, chunk=len(stream)))
+        row("typed, dropped", None, timed(lambda: ours(typed=True).feed, stream, r, keep=False))
+        row("dicts, dropped", None, timed(lambda: ours().feed, stream, r, keep=False))
+        row("dicts, one feed, dropped", None, timed(lambda: ours().feed, stream, r, keep=False, chunk=len(stream)))
+        row("decoding only (_count)", None, timed(lambda: ours()._count, stream, r, count=int))
+        if any(frames != args.frames for _, _, (frames, _) in rows):
+            print(f"{name}: frame counts differ: {[(l, f) for l, _, (f, _) in rows]}", file=sys.stderr)
+            ok = False
+        rate = {label: frames / cpu for label, _, (frames, cpu) in rows}
+        print(f"\n{name}: {args.frames} frames, {len(stream) / 1e6:.1f} MB")
+        print(f"  {'':33} {'frames/CPU-s':>13} {'vs plain':>9} {'vs tuned':>9}")
+        for label, base, _ in rows:
+            line = f"  {label:33} {rate[label] / 1e6:>11.2f} M"
+            if base is not None:
+                suffix = ", all read" if base == " all" else ""
+                line += f" {rate[label] / rate['plain Python, kept' + suffix]:>8.1f}x"
+                line += f" {rate[label] / rate['tuned Python, kept' + suffix]:>8.1f}x"
+            print(line)
     return 0 if ok else 1
 
 

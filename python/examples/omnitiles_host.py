@@ -36,8 +36,8 @@ class SimulatedTile:
         self.period = 1.0 / rate
         self.m1_pos = 1000
         self.m1_speed = 0
-        self.commands: list[dict[str, Any]] = []
-        self.decoder = omnitiles.Decoder(source="host")
+        self.commands: list[Any] = []
+        self.decoder = omnitiles.Decoder(source="host", typed=True)
 
     def telemetry(self, n: int) -> bytes:
         return omnitiles.encode(
@@ -62,9 +62,9 @@ class SimulatedTile:
             return
         for command in self.decoder.feed(data):
             self.commands.append(command)
-            if command["type"] == "m1_extend":
-                self.m1_speed = command["speed"] // 50
-            elif command["type"] == "m1_brake":
+            if command.type == "m1_extend":
+                self.m1_speed = command.speed // 50
+            elif command.type == "m1_brake":
                 self.m1_speed = 0
 
     async def run(self) -> None:
@@ -100,8 +100,9 @@ async def host(port: str, frames: int) -> tuple[list[dict[str, Any]], dict[str, 
     read_file = os.fdopen(fd, "rb", buffering=0, closefd=False)
     transport, _ = await loop.connect_read_pipe(lambda: asyncio.StreamReaderProtocol(reader), read_file)
 
-    decoder = omnitiles.Decoder(source="tile", layouts=["ble53"])
-    seen: list[dict[str, Any]] = []
+    # Typed items: one light object per frame, fields as attributes.
+    decoder = omnitiles.Decoder(source="tile", layouts=["ble53"], typed=True)
+    seen: list[omnitiles.Telemetry] = []
     extended = braked = False
     try:
         while len(seen) < frames:
@@ -112,7 +113,7 @@ async def host(port: str, frames: int) -> tuple[list[dict[str, Any]], dict[str, 
                 if not extended and len(seen) >= 5:
                     os.write(fd, omnitiles.encode({"type": "m1_extend", "speed": 200}))
                     extended = True
-                elif extended and not braked and telemetry["m1_pos"] >= 1020:
+                elif extended and not braked and telemetry.m1_pos >= 1020:
                     os.write(fd, omnitiles.encode({"type": "m1_brake"}))
                     braked = True
     finally:
@@ -137,16 +138,17 @@ async def main() -> int:
         os.close(slave)
         os.close(master)
 
-    positions = [t["m1_pos"] for t in seen]
+    positions = [t.m1_pos for t in seen]
     print(f"host: {len(seen)} telemetry frames from {port}; m1_pos {positions[0]} -> {max(positions)}")
     print(f"host: first frame {seen[0]}")
     print(f"host: stats {stats}")
-    print(f"tile: commands {[c['type'] for c in tile.commands]}")
+    print(f"tile: commands {[c.type for c in tile.commands]}")
     ok = (
         len(seen) == args.frames
-        and [t["uwb"][0] for t in seen] == [1500 + n for n in range(args.frames)]
-        and stats["checksum_errors"] == 1
-        and [c["type"] for c in tile.commands] == ["m1_extend", "m1_brake"]
+        and [t.uwb[0] for t in seen] == [1500 + n for n in range(args.frames)]
+        and seen[0].imu.az == 9.800000190734863  # 9.8 as the wire's f32 carries it
+        and stats["checksum_failures"] == 1
+        and [c.type for c in tile.commands] == ["m1_extend", "m1_brake"]
     )
     print("ok" if ok else "FAILED")
     return 0 if ok else 1

@@ -18,8 +18,10 @@ items and messages to encode are dicts in the JSON-lines schema of the
     >>> omnitiles.encode({"type": "m1_extend", "speed": 200}).hex(" ")
     'a5 30 c8 f8'
 
-A decoder made with ``lazy=True`` returns :class:`Item` mappings instead, which
-build their dict only when read.
+A decoder made with ``typed=True`` returns typed items instead, whose fields
+read as attributes (``t.m1_pos``, ``t.imu.az``) or keys (``t["m1_pos"]``)
+without a dict per frame: :class:`robowire.omnitiles.Telemetry` for telemetry,
+:class:`Item` for everything else.
 """
 
 from collections.abc import Mapping as _Mapping

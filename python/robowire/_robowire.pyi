@@ -6,6 +6,7 @@ from typing import Any, Union
 from typing_extensions import TypeAlias, disjoint_base, final
 
 from . import omnitiles as omnitiles, pixy2 as pixy2, telemetrix as telemetrix
+from ._stats import Stats
 
 __all__ = ["Item", "StreamDecoder", "__version__", "omnitiles", "pixy2", "telemetrix"]
 __version__: str
@@ -15,10 +16,13 @@ _Bytes: TypeAlias = Union[bytes, bytearray, memoryview]
 
 @final
 class Item(Mapping[str, Any]):
-    """A decoded item that builds its dict only when first read (``lazy=True``).
+    """A decoded item that builds its dict only when first read: every item of
+    ``typed=True`` but OmniTiles telemetry, and every item of the deprecated
+    ``lazy=True``.
 
     A read-only mapping with exactly the keys and values of the dict a default
-    decoder returns; equal to that dict.
+    decoder returns; equal to that dict. Fields read as attributes too
+    (``item.speed``).
     """
 
     @property
@@ -33,9 +37,11 @@ class Item(Mapping[str, Any]):
     def __getitem__(self, key: str, /) -> Any: ...
     def __iter__(self) -> Iterator[str]: ...
     def __len__(self) -> int: ...
+    def __getattr__(self, name: str) -> Any: ...
 
-_Decoded: TypeAlias = Mapping[str, Any]
-"""A decoded item: a dict in the JSON-lines schema, or an :class:`Item`."""
+_Decoded: TypeAlias = Any
+"""A decoded item: a dict in the JSON-lines schema, an :class:`Item`, or with
+``typed=True`` also a :class:`robowire.omnitiles.Telemetry`."""
 
 @disjoint_base
 class StreamDecoder:
@@ -53,12 +59,15 @@ class StreamDecoder:
         """End of input: the items a buffered partial frame resolves to."""
     def clear(self) -> None:
         """Forget a buffered partial frame (its bytes count as skipped)."""
+    def feed_array(self, data: _Bytes, /) -> dict[str, Any]:
+        """Decode the next chunk into numpy structured arrays, one per message
+        kind (OmniTiles only; needs numpy)."""
     def _count(self, data: _Bytes, /) -> int:
         """Decode as :meth:`feed` does, building no items; the frames decoded."""
     @property
-    def stats(self) -> dict[str, int]:
-        """Counters: bytes, frames, frame_bytes, skipped, checksum_errors,
-        rejected, malformed, superseded."""
+    def stats(self) -> Stats:
+        """Counters: bytes, frames, frame_bytes, skipped, checksum_failures,
+        other_rejections, malformed, superseded."""
     @property
     def buffered(self) -> int:
         """Bytes held as the start of an unfinished frame."""
@@ -67,4 +76,7 @@ class StreamDecoder:
         """Whether rejected candidates are returned as items."""
     @property
     def lazy(self) -> bool:
-        """Whether items are :class:`Item` objects rather than dicts."""
+        """Whether items are :class:`Item` objects (``lazy=True``, deprecated)."""
+    @property
+    def typed(self) -> bool:
+        """Whether items are typed (``typed=True``)."""

@@ -9,7 +9,7 @@ Items and messages are dicts in the ``robowire`` tool's JSON-lines schema::
     {"offset": 0, "len": 4, "type": "m1_extend", "speed": 200}
     {"offset": 4, "len": 53, "type": "telemetry", "layout": "ble53",
      "m1_pos": 1104, "m2_pos": 2852, "uwb": [4579, 3151, 3112, None],
-     "tof": 448, "imu": {"ax": -1.4454993, ...}, "m1_adcs": [...], "m2_adcs": [...]}
+     "tof": 448, "imu": {"ax": -1.445499300956726, ...}, "m1_adcs": [...], "m2_adcs": [...]}
 
 Command types: ``ping``, ``m1_extend``, ``m1_retract``, ``m1_brake``,
 ``m1_set_position``, the same for ``m2_``, ``base_velocity`` and
@@ -23,6 +23,8 @@ from ._robowire import omnitiles as _native
 
 Decoder = _native.Decoder
 DatagramDecoder = _native.DatagramDecoder
+Telemetry = _native.Telemetry
+Imu = _native.Imu
 encode = _native.encode
 
-__all__ = ["Decoder", "DatagramDecoder", "encode"]
+__all__ = ["Decoder", "DatagramDecoder", "Imu", "Telemetry", "encode"]

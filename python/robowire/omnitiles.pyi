@@ -1,16 +1,91 @@
 """OmniTiles: host commands and tile telemetry (``a5``, id, payload, sum)."""
 
 from collections.abc import Iterable, Mapping
-from typing import Any, Literal, Union
+from typing import Any, Literal, Optional, Union
 
 from typing_extensions import Self, TypeAlias, final
 
 from ._robowire import StreamDecoder, _Bytes, _Decoded
+from ._stats import Stats
 
 _Source: TypeAlias = Literal["tile", "host", "any"]
 _Layouts: TypeAlias = Union[str, Iterable[str], None]
 
-__all__ = ["Decoder", "DatagramDecoder", "encode"]
+__all__ = ["Decoder", "DatagramDecoder", "Imu", "Telemetry", "encode"]
+
+_Layout: TypeAlias = Literal["pos7", "uwb15", "uwbtof17", "spi45", "ble53"]
+
+@final
+class Imu:
+    """One IMU sample; each value is the wire's f32 exactly (NaN, inf included)."""
+
+    @property
+    def ax(self) -> float:
+        """Acceleration along x, m/s²."""
+    @property
+    def ay(self) -> float:
+        """Acceleration along y, m/s²."""
+    @property
+    def az(self) -> float:
+        """Acceleration along z, m/s² (about +9.8 at rest)."""
+    @property
+    def gx(self) -> float:
+        """Angular rate about x, rad/s."""
+    @property
+    def gy(self) -> float:
+        """Angular rate about y, rad/s."""
+    @property
+    def gz(self) -> float:
+        """Angular rate about z, rad/s."""
+    def keys(self) -> list[str]: ...
+    def to_dict(self) -> dict[str, float]:
+        """The dict form's ``imu`` dict."""
+    def __getitem__(self, key: str, /) -> float: ...
+    def __contains__(self, key: object, /) -> bool: ...
+
+@final
+class Telemetry:
+    """One telemetry frame (``typed=True``). ``None``: no reading (0xFFFF), or
+    a group the layout does not carry (``"tof" in t`` tells them apart)."""
+
+    @property
+    def offset(self) -> int:
+        """Offset of the frame's first byte in the stream."""
+    @property
+    def len(self) -> int:
+        """The frame's length: 7, 15, 17, 45 or 53."""
+    @property
+    def type(self) -> Literal["telemetry"]: ...
+    @property
+    def layout(self) -> _Layout: ...
+    @property
+    def m1_pos(self) -> Optional[int]:
+        """M1 position, raw 0..4095."""
+    @property
+    def m2_pos(self) -> Optional[int]:
+        """M2 position, raw 0..4095."""
+    @property
+    def uwb(self) -> Optional[tuple[Optional[int], Optional[int], Optional[int], Optional[int]]]:
+        """UWB ranges to anchors 0..3 in mm (15, 17 and 53-byte layouts)."""
+    @property
+    def tof(self) -> Optional[int]:
+        """ToF range in mm (17, 45 and 53-byte layouts)."""
+    @property
+    def imu(self) -> Optional[Imu]:
+        """IMU sample (45 and 53-byte layouts)."""
+    @property
+    def m1_adcs(self) -> Optional[tuple[int, int, int, int]]:
+        """M1's four potentiometer channels, raw 0..4095 (45 and 53-byte layouts)."""
+    @property
+    def m2_adcs(self) -> Optional[tuple[int, int]]:
+        """M2's two potentiometer channels, raw 0..4095 (45 and 53-byte layouts)."""
+    def keys(self) -> list[str]:
+        """The keys of the dict form (groups the layout carries only)."""
+    def get(self, key: str, default: Any = None, /) -> Any: ...
+    def to_dict(self) -> dict[str, Any]:
+        """The dict a default decoder returns for this frame."""
+    def __getitem__(self, key: str, /) -> Any: ...
+    def __contains__(self, key: object, /) -> bool: ...
 
 @final
 class Decoder(StreamDecoder):
@@ -28,6 +103,7 @@ class Decoder(StreamDecoder):
         layouts: _Layouts = None,
         errors: bool = False,
         lazy: bool = False,
+        typed: bool = False,
     ) -> Self: ...
 
 @final
@@ -40,17 +116,20 @@ class DatagramDecoder:
         layouts: _Layouts = None,
         errors: bool = False,
         lazy: bool = False,
+        typed: bool = False,
     ) -> Self: ...
     def decode(self, datagram: _Bytes, /) -> list[_Decoded]:
         """The items of one datagram, in order."""
     @property
-    def stats(self) -> dict[str, int]: ...
+    def stats(self) -> Stats: ...
     @property
     def errors(self) -> bool: ...
     @property
     def lazy(self) -> bool: ...
+    @property
+    def typed(self) -> bool: ...
 
-def encode(message: Mapping[str, Any], /) -> bytes:
+def encode(message: Union[Mapping[str, Any], Telemetry], /) -> bytes:
     """The frame of one message (a dict in the JSON-lines schema).
 
     Raises ``ValueError`` naming the field and its range if it is invalid.

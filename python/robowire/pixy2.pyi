@@ -27,6 +27,7 @@ class Decoder(StreamDecoder):
         checksum_only: bool = False,
         errors: bool = False,
         lazy: bool = False,
+        typed: bool = False,
     ) -> Self: ...
 
 def encode(message: Mapping[str, Any], /) -> bytes:

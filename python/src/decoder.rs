@@ -1,10 +1,13 @@
 //! `robowire.StreamDecoder`: the Python base class of every protocol's
 //! `Decoder`, holding one [`Engine`].
 
+use pyo3::exceptions::PyImportError;
 use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList};
 
-use crate::engine::{stats_dict, with_bytes, Engine, Items};
+use crate::array::Tables;
+use crate::engine::{stats_dict, with_bytes, Engine, Form, Items};
 
 /// The stream decoder every protocol's ``Decoder`` is: feed it bytes as they
 /// arrive, in chunks of any size, and it returns the decoded items.
@@ -15,8 +18,9 @@ use crate::engine::{stats_dict, with_bytes, Engine, Items};
 /// (``type`` first). With ``errors=True``, rejected candidates are items too:
 /// ``offset`` then the error's keys (``error`` first, no ``type``). The items
 /// never depend on how the bytes were split; call :meth:`finish` at the end of
-/// the input to resolve a frame cut short. With ``lazy=True`` the items are
-/// :class:`robowire.Item` mappings that build their dict only when read.
+/// the input to resolve a frame cut short. With ``typed=True`` the items are
+/// typed objects (:class:`robowire.omnitiles.Telemetry`, else
+/// :class:`robowire.Item`) that read their fields as attributes.
 ///
 /// Construct a protocol's subclass (``robowire.omnitiles.Decoder``, ...), not
 /// this class.
@@ -50,6 +54,31 @@ impl PyStreamDecoder {
         Ok(out)
     }
 
+    /// Decode the next chunk as :meth:`feed` does, into numpy structured
+    /// arrays instead of items: a dict from message kind (``"telemetry"``,
+    /// ``"m1_extend"``, ...) to a 1-D array with one record per frame of that
+    /// kind completed by this chunk, fields ``offset``, ``len`` and the
+    /// message's own (flattened, so ``pandas.DataFrame(array)`` works).
+    /// Rejections are only counted (:attr:`stats`). Needs numpy (``pip install
+    /// robowire[numpy]``); OmniTiles only so far (``NotImplementedError``
+    /// before anything is decoded otherwise).
+    #[pyo3(signature = (data, /))]
+    fn feed_array<'py>(&mut self, data: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
+        let py = data.py();
+        // Import numpy first (once), so that a missing numpy loses no bytes.
+        static NUMPY: PyOnceLock<Py<PyModule>> = PyOnceLock::new();
+        NUMPY
+            .get_or_try_init(py, || py.import("numpy").map(Bound::unbind))
+            .map_err(|e| {
+                PyImportError::new_err(format!(
+                    "feed_array needs numpy (pip install robowire[numpy]): {e}"
+                ))
+            })?;
+        let mut tables = Tables::default();
+        with_bytes(data, |bytes| self.engine.feed_table(bytes, &mut tables))??;
+        tables.into_arrays(py)
+    }
+
     /// Signal the end of the input and return the items that resolves: a
     /// buffered frame that is complete, or (with ``errors=True``) the
     /// rejection of one cut short. The decoder is then empty and can take a new
@@ -74,13 +103,15 @@ impl PyStreamDecoder {
         self.engine.clear();
     }
 
-    /// Link-quality counters, a new dict on each read: ``bytes`` (taken so
-    /// far), ``frames``, ``frame_bytes``, ``skipped`` (bytes in no frame),
-    /// ``checksum_errors``, ``rejected`` (other rejections), ``malformed``
+    /// Link-quality counters, a new dict on each read, in the words of the
+    /// tool's summary line: ``bytes`` (taken so far), ``frames``,
+    /// ``frame_bytes``, ``skipped`` (bytes in no frame), ``checksum_failures``,
+    /// ``other_rejections`` (superseded candidates included), ``malformed``
     /// (frames whose contents did not parse) and ``superseded``. They add up:
-    /// ``bytes == frame_bytes + skipped + buffered``.
+    /// ``bytes == frame_bytes + skipped + buffered``. The old keys
+    /// ``checksum_errors`` and ``rejected`` still read, deprecated.
     #[getter]
-    fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         stats_dict(py, &self.engine.stats())
     }
 
@@ -97,10 +128,18 @@ impl PyStreamDecoder {
     }
 
     /// Whether items are :class:`robowire.Item` objects that build their
-    /// dict when read, rather than dicts.
+    /// dict when read, rather than dicts (``lazy=True``, deprecated).
     #[getter]
     fn lazy(&self) -> bool {
-        self.items.lazy
+        self.items.form == Form::Lazy
+    }
+
+    /// Whether items are typed objects (``typed=True``): an
+    /// :class:`robowire.omnitiles.Telemetry` per telemetry frame, a
+    /// :class:`robowire.Item` for every other message and rejection.
+    #[getter]
+    fn typed(&self) -> bool {
+        self.items.form == Form::Typed
     }
 
     fn __repr__(&self) -> String {

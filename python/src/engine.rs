@@ -6,17 +6,20 @@
 //! Each event becomes a Python dict by pythonizing the library's own
 //! [`OwnedFrame`] or [`Rejected`]; nothing here knows any message.
 
-use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::exceptions::{PyDeprecationWarning, PyNotImplementedError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyByteArray, PyBytes, PyDict, PyList, PyMapping, PyString};
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyByteArray, PyBytes, PyDict, PyList, PyMapping, PyString, PyType};
 use pythonize::{depythonize, pythonize};
 use robowire::stream::{owned_event, FrameRules, OwnedEvent, StreamDecoder};
 use robowire::{Encode, Stats};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
-use crate::item::{Erased, Item};
+use crate::array::{Tables, Tabular};
+use crate::item::Item;
 use crate::schema::Adapt;
+use crate::typed::{untracked, PyTelemetry, Typed};
 
 /// A stream decoder of any protocol, as the Python classes use it.
 pub trait Engine: Send + Sync {
@@ -28,6 +31,13 @@ pub trait Engine: Send + Sync {
     /// Decode `data` without building any Python object; the number of
     /// frames parsed (what a benchmark compares the full path with).
     fn count(&mut self, data: &[u8]) -> usize;
+    /// Decode `data` into `tables` (see [`crate::array`]); rejections are
+    /// only counted. `NotImplementedError`, before decoding anything, for a
+    /// protocol without tables.
+    fn feed_table(&mut self, data: &[u8], tables: &mut Tables) -> PyResult<()> {
+        let _ = (data, tables);
+        Err(no_tables())
+    }
     /// The counters so far.
     fn stats(&self) -> Stats;
     /// Bytes held as the start of an unfinished candidate.
@@ -52,7 +62,7 @@ impl<R, const N: usize> Stream<R, N> {
 impl<R, const N: usize> Engine for Stream<R, N>
 where
     R: FrameRules + Send + Sync,
-    R::Owned: Serialize + Send + Sync + 'static,
+    R::Owned: Typed + Tabular,
     R::Error: Serialize + Send + Sync + 'static,
 {
     fn feed(&mut self, data: &[u8], items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
@@ -85,6 +95,19 @@ where
         frames
     }
 
+    fn feed_table(&mut self, data: &[u8], tables: &mut Tables) -> PyResult<()> {
+        if !R::Owned::TABULAR {
+            return Err(no_tables());
+        }
+        let mut input = data;
+        while let Some(event) = self.0.decode(&mut input) {
+            if let Ok(frame) = owned_event::<R>(event) {
+                R::Owned::record(&frame, tables);
+            }
+        }
+        Ok(())
+    }
+
     fn stats(&self) -> Stats {
         self.0.stats()
     }
@@ -98,51 +121,96 @@ where
     }
 }
 
+/// What a decoder's items are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Form {
+    /// Dicts in the JSON-lines schema (the default).
+    Dict,
+    /// [`Item`]s that build their dict when read (`lazy=True`, deprecated).
+    Lazy,
+    /// Typed items (`typed=True`): see [`crate::typed`].
+    Typed,
+}
+
+/// The error of `feed_array` on a protocol without tables.
+fn no_tables() -> PyErr {
+    PyNotImplementedError::new_err(
+        "feed_array has tables for OmniTiles only so far; use feed(...) with typed=True",
+    )
+}
+
 /// How a decoder hands out its events.
 #[derive(Debug, Clone, Copy)]
 pub struct Items {
     /// Rejections are items too.
     pub errors: bool,
-    /// Items are [`Item`]s that build their dict when read, not dicts.
-    pub lazy: bool,
+    /// What the items are.
+    pub form: Form,
 }
 
 impl Items {
-    /// The options as `repr()` shows them: `, errors=True, lazy=True`.
+    /// The options `errors`, `lazy` and `typed` of a constructor: `lazy`
+    /// warns that it is deprecated, and it cannot be combined with `typed`.
+    pub fn new(py: Python<'_>, errors: bool, lazy: bool, typed: bool) -> PyResult<Self> {
+        let form = match (lazy, typed) {
+            (false, false) => Form::Dict,
+            (false, true) => Form::Typed,
+            (true, false) => {
+                PyErr::warn(
+                    py,
+                    &py.get_type::<PyDeprecationWarning>(),
+                    c"lazy=True is deprecated: typed=True gives items that read their fields \
+                      without building a dict (robowire.Item for messages without a class)",
+                    2,
+                )?;
+                Form::Lazy
+            }
+            (true, true) => {
+                return Err(PyValueError::new_err(
+                    "lazy=True and typed=True cannot be combined: choose typed=True",
+                ))
+            }
+        };
+        Ok(Self { errors, form })
+    }
+
+    /// The options as `repr()` shows them: `, errors=True, typed=True`.
     pub fn describe(self) -> String {
         let mut text = String::new();
         if self.errors {
             text.push_str(", errors=True");
         }
-        if self.lazy {
-            text.push_str(", lazy=True");
+        match self.form {
+            Form::Dict => {}
+            Form::Lazy => text.push_str(", lazy=True"),
+            Form::Typed => text.push_str(", typed=True"),
         }
         text
     }
 }
 
-/// Append one owned event to `out`: a dict in the JSON-lines schema, or an
-/// [`Item`] that builds it when read.
+/// Append one owned event to `out`: a dict in the JSON-lines schema, an
+/// [`Item`] that builds it when read, or a typed item.
 pub fn append<R: FrameRules>(
     out: &Bound<'_, PyList>,
     event: OwnedEvent<R>,
     items: Items,
 ) -> PyResult<()>
 where
-    R::Owned: Serialize + Send + Sync + 'static,
+    R::Owned: Typed,
     R::Error: Serialize + Send + Sync + 'static,
 {
     let py = out.py();
-    let erased: Box<dyn Erased> = match event {
-        Ok(frame) if !items.lazy => return out.append(to_python(py, &frame)?),
-        Err(rejected) if items.errors && !items.lazy => {
-            return out.append(to_python(py, &rejected)?)
+    match (event, items.form) {
+        (Err(_), _) if !items.errors => Ok(()),
+        (Ok(frame), Form::Dict) => out.append(to_python(py, &frame)?),
+        (Err(rejected), Form::Dict) => out.append(to_python(py, &rejected)?),
+        (Ok(frame), Form::Typed) => out.append(R::Owned::typed(py, frame)?),
+        (Ok(frame), Form::Lazy) => out.append(untracked(py, Item::new(Box::new(frame)))?),
+        (Err(rejected), Form::Lazy | Form::Typed) => {
+            out.append(untracked(py, Item::new(Box::new(rejected)))?)
         }
-        Err(_) if !items.errors => return Ok(()),
-        Ok(frame) => Box::new(frame),
-        Err(rejected) => Box::new(rejected),
-    };
-    out.append(Bound::new(py, Item::new(erased))?)
+    }
 }
 
 /// Pythonize a serde value (dicts, lists, ints, floats, strings, None).
@@ -174,10 +242,25 @@ pub fn with_bytes<T>(data: &Bound<'_, PyAny>, f: impl FnOnce(&[u8]) -> T) -> PyR
     )))
 }
 
-/// The counters as a dict: `bytes`, `frames`, `frame_bytes`, `skipped`,
-/// `checksum_errors`, `rejected`, `malformed`, `superseded`.
-pub fn stats_dict<'py>(py: Python<'py>, stats: &Stats) -> PyResult<Bound<'py, PyDict>> {
-    Ok(to_python(py, stats)?.cast_into::<PyDict>()?)
+/// The counters as a `robowire._stats.Stats` dict, in the words of the
+/// tool's summary line (the library's `Display` for [`Stats`]):
+/// `checksum_failures` is `checksum_errors`, `other_rejections` is `rejected`
+/// and `superseded` together.
+pub fn stats_dict<'py>(py: Python<'py>, stats: &Stats) -> PyResult<Bound<'py, PyAny>> {
+    static STATS: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+    let counters = [
+        ("bytes", stats.bytes),
+        ("frames", stats.frames),
+        ("frame_bytes", stats.frame_bytes),
+        ("skipped", stats.skipped),
+        ("checksum_failures", stats.checksum_errors),
+        ("other_rejections", stats.rejected + stats.superseded),
+        ("malformed", stats.malformed),
+        ("superseded", stats.superseded),
+    ];
+    STATS
+        .import(py, "robowire._stats", "Stats")?
+        .call1((counters.to_vec(),))
 }
 
 /// A `ValueError` for an option value that is not one of `allowed`.
@@ -192,26 +275,31 @@ pub fn bad_choice(option: &str, value: &str, allowed: &[&str]) -> PyErr {
     ))
 }
 
-/// Read `message` (a mapping in the JSON-lines schema) into `M`, validating
-/// as the library's `Deserialize` does, and encode it with `write`. Both
-/// kinds of failure are a `ValueError` with the library's message.
+/// Read `message` (a mapping in the JSON-lines schema, or a typed item) into
+/// `M`, validating as the library's `Deserialize` does, and encode it with
+/// `write`. Both kinds of failure are a `ValueError` with the library's
+/// message.
 pub fn encode_with<'py, M: DeserializeOwned>(
     message: &Bound<'py, PyAny>,
     write: impl FnOnce(&M) -> Result<Vec<u8>, String>,
 ) -> PyResult<Bound<'py, PyBytes>> {
-    check_mapping(message)?;
-    let value: M = depythonize(message).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let message = as_message(message)?;
+    let value: M = depythonize(&message).map_err(|e| PyValueError::new_err(e.to_string()))?;
     let frame = write(&value).map_err(PyValueError::new_err)?;
     Ok(PyBytes::new(message.py(), &frame))
 }
 
-/// A `TypeError` unless `message` is a dict or another mapping.
-pub fn check_mapping(message: &Bound<'_, PyAny>) -> PyResult<()> {
+/// `message` as a mapping to read: a dict or another mapping as it is, a
+/// typed item through its `to_dict()`; a `TypeError` for anything else.
+pub fn as_message<'py>(message: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
     if message.is_instance_of::<PyDict>() || message.cast::<PyMapping>().is_ok() {
-        return Ok(());
+        return Ok(message.clone());
+    }
+    if message.is_instance_of::<PyTelemetry>() {
+        return message.call_method0(pyo3::intern!(message.py(), "to_dict"));
     }
     Err(PyTypeError::new_err(format!(
-        "expected a message (a dict in the JSON-lines schema), got {}",
+        "expected a message (a dict in the JSON-lines schema, or a decoded item), got {}",
         message.get_type().name()?
     )))
 }

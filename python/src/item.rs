@@ -1,15 +1,20 @@
 //! `robowire.Item`: a decoded item kept in Rust until Python reads it, for
-//! decoders made with `lazy=True`.
+//! decoders made with `typed=True` (messages without a class of their own)
+//! or `lazy=True`.
 
 use pyo3::basic::CompareOp;
-use pyo3::exceptions::PyKeyError;
+use pyo3::exceptions::{PyAttributeError, PyKeyError};
+use pyo3::ffi;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
-use pyo3::types::{PyDict, PyIterator};
+use pyo3::types::{PyDict, PyIterator, PyString};
 use robowire::stream::{OwnedFrame, Rejected};
 use serde::Serialize;
 
 use crate::engine::to_python;
+
+/// The names of `Item`'s own attributes, which fields do not shadow.
+const METHODS: [&str; 6] = ["offset", "to_dict", "get", "keys", "values", "items"];
 
 /// A frame or a rejection, type-erased.
 pub trait Erased: Send + Sync {
@@ -40,7 +45,10 @@ impl<E: Serialize + Send + Sync> Erased for Rejected<E> {
 }
 
 /// A decoded item that builds its dict only when it is first read: what a
-/// decoder made with ``lazy=True`` returns. It is a read-only mapping with
+/// decoder made with ``typed=True`` returns for every message without a class
+/// of its own (all but OmniTiles telemetry) and for rejections, and what the
+/// deprecated ``lazy=True`` returns for everything. Fields read as attributes
+/// (``item.speed``) or as keys. It is a read-only mapping with
 /// the same keys and values as the dict a default decoder returns
 /// (``item["type"]``, ``item.get("tof")``, ``dict(item)``, ``item ==
 /// {...}``); :meth:`to_dict` gives a plain dict. Items that are never read
@@ -111,6 +119,47 @@ impl Item {
     /// The ``(key, value)`` pairs, in schema order.
     fn items<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.dict(py)?.call_method0("items")
+    }
+
+    /// A field by attribute (``item.speed``), as ``item["speed"]``. Looked
+    /// up before the class's attributes (one dict lookup, no exception on
+    /// the way), except for dunder names and the methods.
+    fn __getattribute__<'py>(
+        slf: &Bound<'py, Self>,
+        name: &Bound<'py, PyString>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        let item = slf.get();
+        let text = name.to_cow()?;
+        let own = text.starts_with("__") || METHODS.contains(&&*text);
+        if !own {
+            if let Some(value) = item.dict(py)?.get_item(name)? {
+                return Ok(value);
+            }
+        }
+        // SAFETY: both pointers are live objects for the call, which
+        // returns a new reference or NULL with an exception set.
+        unsafe {
+            Bound::from_owned_ptr_or_err(
+                py,
+                ffi::PyObject_GenericGetAttr(slf.as_ptr(), name.as_ptr()),
+            )
+        }
+    }
+
+    /// The error for an attribute the item does not have (PyO3 calls this
+    /// when `__getattribute__` raises `AttributeError`).
+    fn __getattr__(&self, py: Python<'_>, name: &Bound<'_, PyString>) -> PyResult<()> {
+        let dict = self.dict(py)?;
+        let kind = match dict.get_item("type")? {
+            Some(kind) => kind,
+            None => dict
+                .get_item("error")?
+                .unwrap_or_else(|| py.None().into_bound(py)),
+        };
+        Err(PyAttributeError::new_err(format!(
+            "{kind} item has no field {name}"
+        )))
     }
 
     fn __getitem__<'py>(

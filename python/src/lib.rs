@@ -3,8 +3,10 @@
 //!
 //! One generic binding ([`engine`]) drives robowire's stream engine for every
 //! protocol and turns each event into a dict by pythonizing the library's own
-//! serde form (the `robowire` tool's JSON-lines schema).
+//! serde form (the `robowire` tool's JSON-lines schema), or into a typed item
+//! ([`typed`]).
 
+mod array;
 mod decoder;
 mod engine;
 mod item;
@@ -12,6 +14,7 @@ mod omnitiles;
 mod pixy2;
 mod schema;
 mod telemetrix;
+mod typed;
 
 use pyo3::prelude::*;
 

@@ -2,7 +2,7 @@
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict, PyList, PyString};
+use pyo3::types::{PyBytes, PyList, PyString};
 use robowire::omnitiles::{
     Both, DatagramDecoder, Device, Framing, Host, Layouts, Message, Side, BOTH_BUFFER,
     DEVICE_BUFFER, HOST_BUFFER,
@@ -11,7 +11,8 @@ use robowire::{Stats, StreamDecoder};
 
 use crate::decoder::PyStreamDecoder;
 use crate::engine::{
-    append, bad_choice, encode_frame, encode_with, stats_dict, with_bytes, Engine, Items, Stream,
+    append, bad_choice, encode_frame, encode_with, stats_dict, with_bytes, Engine, Form, Items,
+    Stream,
 };
 
 const SOURCES: &[&str] = &["tile", "host", "any"];
@@ -71,7 +72,7 @@ trait Datagrams: Send + Sync {
 impl<S> Datagrams for DatagramDecoder<S>
 where
     S: Side + Send + Sync,
-    S::Message: serde::Serialize + Send + Sync,
+    S::Message: crate::typed::Typed,
     Framing<S>: robowire::FrameRules<Owned = S::Message, Error = robowire::omnitiles::Error>,
 {
     fn decode(&mut self, datagram: &[u8], items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
@@ -114,8 +115,9 @@ fn describe(class: &str, source: &str, layouts: Option<&Bound<'_, PyAny>>, items
 /// ``"uwbtof17"``, ``"ble53"``, ``"spi45"`` and ``"auto"`` (the four the SDK
 /// documents, the default); name the one layout you know for the fastest,
 /// surest decoding. ``errors=True`` returns rejected candidates as items;
-/// ``lazy=True`` returns :class:`robowire.Item` mappings that build their
-/// dict only when read.
+/// ``typed=True`` returns typed items (a :class:`Telemetry` per telemetry
+/// frame, a :class:`robowire.Item` for a command or a rejection) instead of
+/// dicts; ``lazy=True`` (deprecated) returns :class:`robowire.Item` mappings.
 ///
 /// >>> from robowire import omnitiles
 /// >>> d = omnitiles.Decoder(source="host")
@@ -129,19 +131,21 @@ pub struct OmniDecoder;
 #[pymethods]
 impl OmniDecoder {
     #[new]
-    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false))]
+    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false, typed = false))]
     fn new(
         source: &str,
         layouts: Option<&Bound<'_, PyAny>>,
         errors: bool,
         lazy: bool,
+        typed: bool,
+        py: Python<'_>,
     ) -> PyResult<PyClassInitializer<Self>> {
         let engine: Box<dyn Engine> = match choose(source, layouts)? {
             Choice::Tile(f) => Stream::boxed(StreamDecoder::<_, HOST_BUFFER>::new(f)),
             Choice::Host(f) => Stream::boxed(StreamDecoder::<_, DEVICE_BUFFER>::new(f)),
             Choice::Any(f) => Stream::boxed(StreamDecoder::<_, BOTH_BUFFER>::new(f)),
         };
-        let items = Items { errors, lazy };
+        let items = Items::new(py, errors, lazy, typed)?;
         let repr = describe("Decoder", source, layouts, items);
         let base = PyStreamDecoder::new(engine, items, repr);
         Ok(PyClassInitializer::from(base).add_subclass(OmniDecoder))
@@ -169,19 +173,21 @@ pub struct OmniDatagramDecoder {
 #[pymethods]
 impl OmniDatagramDecoder {
     #[new]
-    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false))]
+    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false, typed = false))]
     fn new(
         source: &str,
         layouts: Option<&Bound<'_, PyAny>>,
         errors: bool,
         lazy: bool,
+        typed: bool,
+        py: Python<'_>,
     ) -> PyResult<Self> {
         let inner: Box<dyn Datagrams> = match choose(source, layouts)? {
             Choice::Tile(f) => Box::new(DatagramDecoder::new(f)),
             Choice::Host(f) => Box::new(DatagramDecoder::new(f)),
             Choice::Any(f) => Box::new(DatagramDecoder::new(f)),
         };
-        let items = Items { errors, lazy };
+        let items = Items::new(py, errors, lazy, typed)?;
         Ok(Self {
             inner,
             items,
@@ -202,7 +208,7 @@ impl OmniDatagramDecoder {
     /// Link-quality counters over every datagram so far (see
     /// :attr:`robowire.StreamDecoder.stats`).
     #[getter]
-    fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         stats_dict(py, &self.inner.stats())
     }
 
@@ -212,10 +218,17 @@ impl OmniDatagramDecoder {
         self.items.errors
     }
 
-    /// Whether items are :class:`robowire.Item` objects.
+    /// Whether items are :class:`robowire.Item` objects (``lazy=True``,
+    /// deprecated).
     #[getter]
     fn lazy(&self) -> bool {
-        self.items.lazy
+        self.items.form == Form::Lazy
+    }
+
+    /// Whether items are typed objects (``typed=True``).
+    #[getter]
+    fn typed(&self) -> bool {
+        self.items.form == Form::Typed
     }
 
     fn __repr__(&self) -> String {
@@ -241,6 +254,8 @@ pub fn module(py: Python<'_>) -> PyResult<Bound<'_, PyModule>> {
     let m = PyModule::new(py, "omnitiles")?;
     m.add_class::<OmniDecoder>()?;
     m.add_class::<OmniDatagramDecoder>()?;
+    m.add_class::<crate::typed::PyTelemetry>()?;
+    m.add_class::<crate::typed::PyImu>()?;
     m.add_function(wrap_pyfunction!(encode, &m)?)?;
     Ok(m)
 }

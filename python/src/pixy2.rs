@@ -46,7 +46,9 @@ fn engine(source: &str, checksum_only: bool) -> PyResult<Box<dyn Engine>> {
 /// ``checksum_only=True`` accepts only the checksum form (``af c1``), as a
 /// Pixy2 always answers over SPI, I2C and UART: then no unverifiable frame
 /// can be decoded. ``errors=True`` returns rejected candidates as items;
-/// ``lazy=True`` returns :class:`robowire.Item` mappings.
+/// ``typed=True`` returns :class:`robowire.Item` objects (fields as
+/// attributes, built on first read) instead of dicts; ``lazy=True`` is its
+/// deprecated older name.
 ///
 /// >>> from robowire import pixy2
 /// >>> d = pixy2.Decoder(source="device")
@@ -58,15 +60,17 @@ pub struct Pixy2Decoder;
 #[pymethods]
 impl Pixy2Decoder {
     #[new]
-    #[pyo3(signature = (source = "any", checksum_only = false, errors = false, lazy = false))]
+    #[pyo3(signature = (source = "any", checksum_only = false, errors = false, lazy = false, typed = false))]
     fn new(
         source: &str,
         checksum_only: bool,
         errors: bool,
         lazy: bool,
+        typed: bool,
+        py: Python<'_>,
     ) -> PyResult<PyClassInitializer<Self>> {
         let engine = engine(source, checksum_only)?;
-        let items = Items { errors, lazy };
+        let items = Items::new(py, errors, lazy, typed)?;
         let checksum_only = if checksum_only {
             ", checksum_only=True"
         } else {
@@ -93,7 +97,11 @@ impl Pixy2Decoder {
 #[pyfunction]
 #[pyo3(signature = (message, /))]
 fn encode<'py>(message: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyBytes>> {
-    encode_with(message, encode_frame::<Envelope<MessageBuf>>)
+    // Every line the decoder prints encodes: a marked quirk (sigmap 0) is
+    // the opt-in, as in `robowire encode pixy2`.
+    encode_with(message, |m: &Envelope<MessageBuf>| {
+        encode_frame(&m.clone().even_if_refused())
+    })
 }
 
 /// `robowire.pixy2`.

@@ -1,16 +1,16 @@
 //! The JSON-lines schema in Python objects: a thin adapter in front of
-//! pythonize's serializer, so that a value pythonizes to exactly what
-//! `json.loads` gives for the `robowire` tool's line of that value.
+//! pythonize's serializer, so that a value pythonizes to the tool's line of
+//! that value with Python's own values.
 //!
 //! pythonize already maps maps to dicts, sequences to lists, integers to
-//! ints, strings to strs and `None` to `None`. Three things differ from JSON,
-//! and this adapter changes only those, recursively:
+//! ints, strings to strs and `None` to `None`. This adapter changes, recursively:
 //!
 //! * a tuple (how serde writes a fixed-size array such as `uwb: [u16; 4]`) is
 //!   a list, as in JSON, not a Python tuple;
-//! * an `f32` is the `float` its JSON text reads back as (the shortest
-//!   decimal that is the same `f32`: `-1.4454993`, not the wider
-//!   `-1.445499300956726`), as the library's schema form says;
+//! * an `f32` is the `float` of exactly its value (`0.10000000149011612` for
+//!   the wire's `0.1f32`), infinities and NaNs included: the adapter says it
+//!   is not human-readable, so the library writes every `f32` as a number
+//!   rather than as the JSON text's `"inf"` or `"nan:0x7fc00000"`;
 //! * a byte string is a list of ints, as serde_json writes it, not `bytes`.
 
 use serde::ser::{
@@ -30,19 +30,15 @@ impl<T: Serialize + ?Sized> Serialize for Adapt<'_, T> {
 /// The adapter around a serializer (or one of its compound serializers).
 pub struct Schema<S>(pub S);
 
-/// The `f64` that the JSON text of `x` reads back as: the shortest decimal
-/// that parses to the same `f32`, read as `f64` (or `x` widened, for the rare
-/// value whose shortest `f32` digits do not come back through `f64`).
-fn json_f32(x: f32) -> f64 {
-    let wide = f64::from(x);
-    if !x.is_finite() {
-        return wide;
+/// `x` as a Python `float`: its exact value, and for a NaN its sign and
+/// payload bit for bit (`f64::from` may quieten a signalling NaN).
+pub fn exact_f64(x: f32) -> f64 {
+    if !x.is_nan() {
+        return f64::from(x);
     }
-    let mut digits = ryu::Buffer::new();
-    match digits.format_finite(x).parse::<f64>() {
-        Ok(decimal) if (decimal as f32).to_bits() == x.to_bits() => decimal,
-        _ => wide,
-    }
+    let bits = x.to_bits();
+    let sign = u64::from(bits >> 31) << 63;
+    f64::from_bits(sign | 0x7ff0_0000_0000_0000 | (u64::from(bits & 0x007f_ffff) << 29))
 }
 
 macro_rules! forward {
@@ -75,7 +71,7 @@ impl<S: Serializer> Serializer for Schema<S> {
     }
 
     fn serialize_f32(self, v: f32) -> Result<S::Ok, S::Error> {
-        self.0.serialize_f64(json_f32(v))
+        self.0.serialize_f64(exact_f64(v))
     }
 
     fn serialize_bytes(self, v: &[u8]) -> Result<S::Ok, S::Error> {
@@ -161,8 +157,10 @@ impl<S: Serializer> Serializer for Schema<S> {
             .map(Schema)
     }
 
+    /// Not human-readable: the library then writes an `f32` as itself, never
+    /// as the JSON text's `"inf"` or `"nan:0x…"` strings.
     fn is_human_readable(&self) -> bool {
-        self.0.is_human_readable()
+        false
     }
 }
 

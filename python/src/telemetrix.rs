@@ -142,7 +142,9 @@ fn dialect(name: &str) -> PyResult<Dialect> {
 /// 1.1). ``lenient=True`` accepts report ids the dialect does not define as
 /// ``unknown_report`` when a valid report follows directly (not with
 /// ``source="host"``). ``errors=True`` returns rejected candidates as items;
-/// ``lazy=True`` returns :class:`robowire.Item` mappings.
+/// ``typed=True`` returns :class:`robowire.Item` objects (fields as
+/// attributes, built on first read) instead of dicts; ``lazy=True`` is its
+/// deprecated older name.
 ///
 /// >>> from robowire import telemetrix
 /// >>> d = telemetrix.Decoder(source="pico")
@@ -154,13 +156,15 @@ pub struct TmxDecoder;
 #[pymethods]
 impl TmxDecoder {
     #[new]
-    #[pyo3(signature = (source = "any", dialect = "mirte13", lenient = false, errors = false, lazy = false))]
+    #[pyo3(signature = (source = "any", dialect = "mirte13", lenient = false, errors = false, lazy = false, typed = false))]
     fn new(
         source: &str,
         dialect: &str,
         lenient: bool,
         errors: bool,
         lazy: bool,
+        typed: bool,
+        py: Python<'_>,
     ) -> PyResult<PyClassInitializer<Self>> {
         let name = dialect;
         let dialect = self::dialect(name)?;
@@ -181,7 +185,7 @@ impl TmxDecoder {
             "host" => Telemetrix::boxed(Framing::<Device>::new().with_dialect(dialect)),
             other => return Err(bad_choice("source", other, SOURCES)),
         };
-        let items = Items { errors, lazy };
+        let items = Items::new(py, errors, lazy, typed)?;
         let lenient = if lenient { ", lenient=True" } else { "" };
         let repr = format!(
             "robowire.telemetrix.Decoder(source={source:?}, dialect={name:?}{lenient}{})",
@@ -205,8 +209,8 @@ impl TmxDecoder {
 #[pyo3(signature = (message, /, dialect = "mirte13"))]
 fn encode<'py>(message: &Bound<'py, PyAny>, dialect: &str) -> PyResult<Bound<'py, PyBytes>> {
     let dialect = self::dialect(dialect)?;
-    crate::engine::check_mapping(message)?;
-    let mut input = Depythonizer::from_object(message);
+    let message = crate::engine::as_message(message)?;
+    let mut input = Depythonizer::from_object(&message);
     let frame = MessageBuf::deserialize_in(&mut input, dialect)
         .map_err(|e| PyValueError::new_err(e.to_string()))?;
     Ok(PyBytes::new(message.py(), &frame))

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import json
+import math
 import os
+import struct
 import subprocess
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -46,8 +48,11 @@ class Case:
         lines = (DATA / self.file).read_text().splitlines()
         return [read_hex(line) for line in lines if line.strip()]
 
-    def decoder(self, errors: bool = True, lazy: bool = False) -> Any:
-        return self.make(errors=errors, lazy=lazy, **self.kwargs)
+    def decoder(self, errors: bool = True, lazy: bool = False, typed: bool = False) -> Any:
+        if lazy:  # deprecated: tested as long as it exists
+            with pytest.warns(DeprecationWarning, match="typed=True"):
+                return self.make(errors=errors, lazy=True, **self.kwargs)
+        return self.make(errors=errors, typed=typed, **self.kwargs)
 
     def cli_args(self) -> list[str]:
         protocol = {omnitiles: "omnitiles", pixy2: "pixy2", telemetrix: "telemetrix"}[
@@ -125,9 +130,11 @@ def cli_lines(case: Case) -> list[dict[str, Any]]:
     return [json.loads(line) for line in text.splitlines()]
 
 
-def decode_all(case: Case, chunk: Optional[int] = None, errors: bool = True, lazy: bool = False) -> list[Any]:
+def decode_all(
+    case: Case, chunk: Optional[int] = None, errors: bool = True, lazy: bool = False, typed: bool = False
+) -> list[Any]:
     """Decode `case`'s capture with the Python decoder, `chunk` bytes at a time."""
-    decoder = case.decoder(errors=errors, lazy=lazy)
+    decoder = case.decoder(errors=errors, lazy=lazy, typed=typed)
     if case.datagrams:
         return [item for datagram in case.datagram_list() for item in decoder.decode(datagram)]
     data = case.input()
@@ -136,6 +143,54 @@ def decode_all(case: Case, chunk: Optional[int] = None, errors: bool = True, laz
     for start in range(0, len(data), step):
         items += decoder.feed(data[start : start + step])
     return items + decoder.finish()
+
+
+def f32(x: float) -> float:
+    """The value of the ``f32`` nearest to `x`, as a Python float: what an
+    item holds for a wire value written ``x`` in the tool's JSON text."""
+    return struct.unpack("<f", struct.pack("<f", x))[0]
+
+
+def f32_bits(x: float) -> int:
+    """The bits of the ``f32`` that the float `x` holds exactly; a NaN's sign
+    and payload are read from the ``f64``'s bits, not through C's cast."""
+    if math.isnan(x):
+        (wide,) = struct.unpack("<Q", struct.pack("<d", x))
+        return ((wide >> 63) << 31) | 0x7F800000 | ((wide >> 29) & 0x7FFFFF)
+    (bits,) = struct.unpack("<I", struct.pack("<f", x))
+    assert struct.unpack("<f", struct.pack("<I", bits))[0] == x, f"{x!r} is not an f32"
+    return bits
+
+
+def json_f32_bits(value: Any) -> int:
+    """The bits of the ``f32`` the tool's JSON text for it says: a number, or
+    ``"inf"``, ``"-inf"``, ``"nan:0x…"``."""
+    if isinstance(value, str):
+        named = {"inf": 0x7F800000, "-inf": 0xFF800000}
+        if value in named:
+            return named[value]
+        assert value.startswith("nan:0x"), value
+        return int(value[len("nan:0x") :], 16)
+    return f32_bits(f32(value))
+
+
+def assert_same_item(ours: Any, theirs: Any, path: str = "") -> None:
+    """`ours` (a Python item in the dict form) is the tool's line `theirs`:
+    the same keys in the same order and the same values, a float compared as
+    the ``f32`` the line's text reads back as (the item holds the f32's exact
+    value, the line its shortest decimal)."""
+    if isinstance(ours, float):
+        assert json_f32_bits(theirs) == f32_bits(ours), (path, ours, theirs)
+    elif isinstance(ours, dict):
+        assert isinstance(theirs, dict) and list(ours) == list(theirs), (path, ours, theirs)
+        for key in ours:
+            assert_same_item(ours[key], theirs[key], f"{path}.{key}")
+    elif isinstance(ours, list):
+        assert isinstance(theirs, list) and len(ours) == len(theirs), (path, ours, theirs)
+        for i, (a, b) in enumerate(zip(ours, theirs)):
+            assert_same_item(a, b, f"{path}[{i}]")
+    else:
+        assert type(ours) is type(theirs) and ours == theirs, (path, ours, theirs)
 
 
 @pytest.fixture(params=CASES, ids=[c.name for c in CASES])

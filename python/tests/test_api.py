@@ -68,7 +68,7 @@ def test_classes_and_docs() -> None:
         assert "ValueError" in (function.__doc__ or "")
     assert "chunk" in (robowire.StreamDecoder.feed.__doc__ or "")
     if sys.version_info >= (3, 10):  # PyO3 gives classes no text signature on 3.9
-        assert omnitiles.Decoder.__text_signature__ == '(source="any", layouts=None, errors=False, lazy=False)'
+        assert omnitiles.Decoder.__text_signature__ == '(source="any", layouts=None, errors=False, lazy=False, typed=False)'
     assert str(inspect.signature(telemetrix.encode)) == "(message, /, dialect='mirte13')"
     feed = inspect.signature(robowire.StreamDecoder.feed).parameters["data"]
     assert feed.kind is inspect.Parameter.POSITIONAL_ONLY
@@ -110,7 +110,7 @@ def test_finish_reports_a_cut_frame_and_resets() -> None:
     decoder = omnitiles.Decoder(source="host", errors=True)
     assert decoder.feed(EXTEND[:2]) == []
     assert decoder.buffered == 2
-    assert decoder.finish() == [{"offset": 0, "len": 2, "error": "truncated"}] or decoder.stats["rejected"] == 1
+    assert decoder.finish() == [{"offset": 0, "len": 2, "error": "truncated"}] or decoder.stats["other_rejections"] == 1
     assert decoder.buffered == 0
     assert decoder.feed(PING) == [{"offset": 2, "len": 3, "type": "ping"}]
 
@@ -133,20 +133,38 @@ def test_errors_flag() -> None:
     assert items[0] == {"offset": 0, "error": "checksum", "expected": 0xF8, "found": 0xF7}
     assert items[-1]["type"] == "ping"
     assert quiet.stats == loud.stats
-    assert quiet.stats["checksum_errors"] == 1
+    assert quiet.stats["checksum_failures"] == 1
     assert loud.errors and not quiet.errors
 
 
 def test_stats_keys() -> None:
     stats = omnitiles.Decoder().stats
-    assert set(stats) == {
-        "bytes", "frames", "frame_bytes", "skipped", "checksum_errors", "rejected", "malformed", "superseded",
-    }
+    assert list(stats) == [
+        "bytes", "frames", "frame_bytes", "skipped", "checksum_failures", "other_rejections", "malformed",
+        "superseded",
+    ]
+    assert isinstance(stats, dict)
+
+
+def test_stats_old_keys_are_deprecated_aliases() -> None:
+    # A bad checksum, an unknown id (a5 99 ...), a ping.
+    decoder = omnitiles.Decoder(source="host")
+    decoder.feed(bytes.fromhex("a5 30 c8 f7 a5 99 99 a5 50 50"))
+    stats = decoder.stats
+    assert stats["checksum_failures"] == 1 and stats["other_rejections"] >= 1
+    with pytest.warns(DeprecationWarning, match="checksum_failures"):
+        assert stats["checksum_errors"] == stats["checksum_failures"]
+    with pytest.warns(DeprecationWarning, match="other_rejections"):
+        assert stats["rejected"] == stats["other_rejections"] - stats["superseded"]
+    assert "rejected" not in stats
+    with pytest.raises(KeyError):
+        stats["nope"]
 
 
 # ---------------------------------------------------------------- lazy items
 
 
+@pytest.mark.filterwarnings("ignore:lazy=True is deprecated:DeprecationWarning")
 def test_lazy_item_is_a_read_only_mapping() -> None:
     (item,) = omnitiles.Decoder(lazy=True).feed(EXTEND)
     assert isinstance(item, robowire.Item)
@@ -170,6 +188,7 @@ def test_lazy_item_is_a_read_only_mapping() -> None:
         item["speed"] = 1  # type: ignore[index]
 
 
+@pytest.mark.filterwarnings("ignore:lazy=True is deprecated:DeprecationWarning")
 def test_lazy_items_encode_back() -> None:
     (item,) = omnitiles.Decoder(lazy=True).feed(EXTEND)
     assert omnitiles.encode(item) == EXTEND
@@ -206,6 +225,18 @@ def test_encode_invalid_raises_value_error_naming_the_field(encode: Any, message
 def test_encode_refuses_non_mappings(encode: Any, bad: Any) -> None:
     with pytest.raises(TypeError):
         encode(bad)
+
+
+def test_marked_quirks_encode_to_the_frames_they_came_from() -> None:
+    # What a real host sends and the encoder refuses without the decoder's marker.
+    for module, frame in ((pixy2, "ae c1 20 02 00 00"), (telemetrix, "03 02 19 02")):
+        data = bytes.fromhex(frame)
+        (item,) = module.Decoder().feed(data)
+        assert item.get("quirk"), item
+        assert module.encode(item) == data
+        unmarked = {k: v for k, v in item.items() if k != "quirk"}
+        with pytest.raises(ValueError, match="quirk"):
+            module.encode(unmarked)
 
 
 def test_telemetrix_encode_takes_a_dialect() -> None:

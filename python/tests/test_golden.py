@@ -9,6 +9,8 @@ import pytest
 
 from robowire import omnitiles, pixy2, telemetrix
 
+from conftest import f32
+
 OMNITILES = [
     ("a5 50 50", {"type": "ping"}),
     ("a5 30 c8 f8", {"type": "m1_extend", "speed": 200}),
@@ -44,8 +46,8 @@ OMNITILES = [
             "m2_pos": 1000,
             "uwb": [1500, 2500, 3500, 4500],
             "tof": 321,
-            # The JSON decimals of the f32 values, exactly.
-            "imu": {"ax": 0.1, "ay": 0.2, "az": 9.8, "gx": 0.01, "gy": -0.02, "gz": 0.03},
+            # The f32 values exactly (0.1f32 is 0.10000000149011612).
+            "imu": {"ax": f32(0.1), "ay": f32(0.2), "az": f32(9.8), "gx": f32(0.01), "gy": f32(-0.02), "gz": f32(0.03)},
             "m1_adcs": [2001, 2002, 2003, 2004],
             "m2_adcs": [1001, 1002],
         },

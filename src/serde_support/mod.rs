@@ -77,8 +77,12 @@ pub(crate) use value::Value;
 /// is parsed as an `f32` or as the nearest `f64` then rounded (what most JSON
 /// readers do). Infinities are the strings `"inf"` and `"-inf"`; a NaN is
 /// `"nan:0x7fc00000"`, its bit pattern, so its sign and payload survive.
-/// [`read_f32`] reads all of them.
+/// [`read_f32`] reads all of them. A format that is not human-readable (a
+/// binary one, or robowire's Python binding) carries every `f32` as itself.
 pub(crate) fn serialize_f32<S: Serializer>(x: f32, serializer: S) -> Result<S::Ok, S::Error> {
+    if !serializer.is_human_readable() {
+        return serializer.serialize_f32(x);
+    }
     if x.is_nan() {
         let mut text = Inline::<16>::new();
         // 4 + 10 characters always fit.

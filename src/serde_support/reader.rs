@@ -19,10 +19,13 @@ pub(crate) const IGNORED: [&str; 2] = ["offset", "len"];
 /// Read an `f32` as [`serialize_f32`](super::serialize_f32) writes it: a number
 /// (rounded to the nearest `f32` through the nearest `f64`), `"inf"`, `"+inf"`,
 /// `"-inf"`, `"nan"` (the quiet NaN `0x7fc00000`) or `"nan:0x…"` with a NaN's
-/// bit pattern.
+/// bit pattern. A format that has non-finite numbers (a Python `float`) may
+/// give them as numbers too; a NaN keeps its sign and the top of its payload.
 pub(crate) fn read_f32(value: &Value) -> Result<f32, String> {
     const EXPECTED: &str = "a number, \"inf\", \"-inf\" or \"nan:0x…\"";
     match value {
+        Value::F64(wide) if wide.is_nan() => Ok(narrow_nan(*wide)),
+        Value::F64(wide) if wide.is_infinite() => Ok(*wide as f32),
         Value::U64(_) | Value::I64(_) | Value::F64(_) => {
             let wide = value.as_f64().unwrap_or(f64::NAN);
             let x = wide as f32;
@@ -48,6 +51,18 @@ pub(crate) fn read_f32(value: &Value) -> Result<f32, String> {
         },
         other => Err(format!("must be {EXPECTED}, found {other}")),
     }
+}
+
+/// The `f32` NaN with `wide`'s sign and the top 23 bits of its payload (what
+/// widening an `f32` NaN to `f64` keeps), bit for bit: `as` may quieten a
+/// signalling NaN.
+fn narrow_nan(wide: f64) -> f32 {
+    let bits = wide.to_bits();
+    let sign = ((bits >> 63) as u32) << 31;
+    let payload = ((bits >> 29) as u32) & 0x007f_ffff;
+    // A payload only in the low 29 bits has no f32 form: the quiet NaN.
+    let payload = if payload == 0 { 0x0040_0000 } else { payload };
+    f32::from_bits(sign | 0x7f80_0000 | payload)
 }
 
 /// Read an integer in `min..=max`.
@@ -180,6 +195,27 @@ mod tests {
                 .map(|(k, v)| (k.to_string(), v.clone()))
                 .collect(),
         )
+    }
+
+    #[test]
+    fn non_finite_numbers_read_bit_for_bit() {
+        for bits in [
+            0x7fc0_0000u32,
+            0xffc0_0001,
+            0x7f80_0001,
+            0x7f80_0000,
+            0xff80_0000,
+        ] {
+            let wide = f64::from(f32::from_bits(bits));
+            // Widening by bits, as a format that has a NaN's payload gives it.
+            let wide = if wide.is_nan() {
+                let sign = u64::from(bits >> 31) << 63;
+                f64::from_bits(sign | 0x7ff0_0000_0000_0000 | u64::from(bits & 0x007f_ffff) << 29)
+            } else {
+                wide
+            };
+            assert_eq!(read_f32(&Value::F64(wide)).map(f32::to_bits), Ok(bits));
+        }
     }
 
     #[test]

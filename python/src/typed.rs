@@ -1,0 +1,429 @@
+//! Typed items (`typed=True`): one light Python object per decoded frame.
+//!
+//! OmniTiles telemetry, the frame a host reads at rate, is a
+//! [`PyTelemetry`] holding the library's `Copy` [`Telemetry`]: creating one
+//! is a single allocation the garbage collector does not track, and each
+//! attribute builds its Python value only when read. Every other message, and
+//! every rejection, is a [`robowire.Item`](crate::item::Item): the same
+//! attributes and keys, built (once, as a dict) on the first read.
+
+use pyo3::basic::CompareOp;
+use pyo3::exceptions::PyKeyError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyString, PyTuple};
+use robowire::omnitiles::{Imu, Message, Telemetry};
+use robowire::stream::OwnedFrame;
+use serde::Serialize;
+
+use crate::engine::to_python;
+use crate::item::Item;
+use crate::schema::exact_f64;
+
+/// A new Python object of class `T`, not tracked by the garbage collector.
+///
+/// For the item classes, which have no `__traverse__`: the collector can
+/// find nothing through them (an `Item`'s dict, once built, is not visited
+/// either way), so tracking them only makes every collection walk over each
+/// item a host keeps.
+pub fn untracked<T: pyo3::PyClass + Into<PyClassInitializer<T>>>(
+    py: Python<'_>,
+    value: T,
+) -> PyResult<Bound<'_, PyAny>> {
+    let item = Bound::new(py, value)?;
+    // SAFETY: `item` is a live object of a GC type (PyO3 gives every class
+    // one); untracking it only keeps the collector from visiting it, and its
+    // deallocation may untrack it again.
+    unsafe { pyo3::ffi::PyObject_GC_UnTrack(item.as_ptr().cast()) };
+    Ok(item.into_any())
+}
+
+/// How a library message becomes a typed item.
+pub trait Typed: Serialize + Send + Sync + Sized + 'static {
+    /// The typed item of `frame`: an [`Item`] unless a message has a class.
+    fn typed(py: Python<'_>, frame: OwnedFrame<Self>) -> PyResult<Bound<'_, PyAny>> {
+        untracked(py, Item::new(Box::new(frame)))
+    }
+}
+
+impl Typed for Telemetry {
+    fn typed(py: Python<'_>, frame: OwnedFrame<Self>) -> PyResult<Bound<'_, PyAny>> {
+        untracked(py, PyTelemetry::from(frame))
+    }
+}
+
+impl Typed for Message {
+    fn typed(py: Python<'_>, frame: OwnedFrame<Self>) -> PyResult<Bound<'_, PyAny>> {
+        match frame.message {
+            Message::Telemetry(t) => Telemetry::typed(
+                py,
+                OwnedFrame {
+                    offset: frame.offset,
+                    len: frame.len,
+                    message: t,
+                },
+            ),
+            Message::Command(_) => untracked(py, Item::new(Box::new(frame))),
+        }
+    }
+}
+
+impl Typed for robowire::omnitiles::Command {}
+impl Typed for robowire::telemetrix::MessageBuf {}
+impl Typed for robowire::pixy2::Envelope<robowire::pixy2::ResponseBuf> {}
+impl Typed for robowire::pixy2::Envelope<robowire::pixy2::Request> {}
+impl Typed for robowire::pixy2::Envelope<robowire::pixy2::MessageBuf> {}
+
+/// The answer of `__richcmp__` for `op` when the items are `equal` (`None`:
+/// the other object is of no type this one compares with).
+fn compared(py: Python<'_>, equal: Option<bool>, op: CompareOp) -> PyResult<Py<PyAny>> {
+    let answer = match (op, equal) {
+        (CompareOp::Eq, Some(equal)) => equal,
+        (CompareOp::Ne, Some(equal)) => !equal,
+        _ => return Ok(py.NotImplemented()),
+    };
+    Ok(answer.into_pyobject(py)?.to_owned().into_any().unbind())
+}
+
+/// The keys of a telemetry item, in the dict form's order.
+const TELEMETRY_KEYS: [&str; 11] = [
+    "offset", "len", "type", "layout", "m1_pos", "m2_pos", "uwb", "tof", "imu", "m1_adcs",
+    "m2_adcs",
+];
+
+/// One OmniTiles telemetry frame (``typed=True``). Attributes: ``offset``,
+/// ``len``, ``type`` (``"telemetry"``), ``layout`` (``"ble53"``, ...),
+/// ``m1_pos``, ``m2_pos``, ``uwb`` (a tuple of four), ``tof``, ``imu`` (an
+/// :class:`Imu`), ``m1_adcs`` (four), ``m2_adcs`` (two). A reading the tile
+/// sent as ``0xFFFF`` is ``None``, and so is a group the frame's layout does
+/// not carry (``"tof" in t`` tells them apart; ``t["tof"]`` raises
+/// ``KeyError`` for a group not carried, as the dict form has no such key).
+///
+/// ``t["m1_pos"]`` reads a field by name, :meth:`to_dict` gives the dict a
+/// default decoder returns, and ``==`` compares with another item or with
+/// that dict.
+#[pyclass(module = "robowire.omnitiles", name = "Telemetry", frozen)]
+pub struct PyTelemetry {
+    offset: u64,
+    len: usize,
+    telemetry: Telemetry,
+}
+
+impl From<OwnedFrame<Telemetry>> for PyTelemetry {
+    fn from(frame: OwnedFrame<Telemetry>) -> Self {
+        Self {
+            offset: frame.offset,
+            len: frame.len,
+            telemetry: frame.message,
+        }
+    }
+}
+
+/// A `u16` reading, `None` for "no reading".
+fn reading(py: Python<'_>, value: Option<u16>) -> Bound<'_, PyAny> {
+    match value {
+        Some(v) => v
+            .into_pyobject(py)
+            .map(Bound::into_any)
+            .unwrap_or_else(|e| match e {}),
+        None => py.None().into_bound(py),
+    }
+}
+
+fn tuple_of<'py, T: IntoPyObject<'py> + Copy>(
+    py: Python<'py>,
+    values: &[T],
+) -> PyResult<Bound<'py, PyAny>> {
+    Ok(PyTuple::new(py, values.iter().copied())?.into_any())
+}
+
+impl PyTelemetry {
+    /// The value of field `key`, `None` where the key is not this item's.
+    fn field<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let t = &self.telemetry;
+        Ok(Some(match key {
+            "offset" => self.offset.into_pyobject(py)?.into_any(),
+            "len" => self.len.into_pyobject(py)?.into_any(),
+            "type" => pyo3::intern!(py, "telemetry").clone().into_any(),
+            "layout" => PyString::intern(py, t.layout.name()).into_any(),
+            "m1_pos" => reading(py, t.m1_pos),
+            "m2_pos" => reading(py, t.m2_pos),
+            "uwb" => match &t.uwb {
+                Some(uwb) => PyTuple::new(py, uwb.iter().map(|&r| reading(py, r)))?.into_any(),
+                None => return Ok(None),
+            },
+            "tof" => match t.tof {
+                Some(tof) => reading(py, tof),
+                None => return Ok(None),
+            },
+            "imu" => match t.imu {
+                Some(imu) => Bound::new(py, PyImu::from(imu))?.into_any(),
+                None => return Ok(None),
+            },
+            "m1_adcs" => match &t.m1_adcs {
+                Some(adcs) => tuple_of(py, adcs)?,
+                None => return Ok(None),
+            },
+            "m2_adcs" => match &t.m2_adcs {
+                Some(adcs) => tuple_of(py, adcs)?,
+                None => return Ok(None),
+            },
+            _ => return Ok(None),
+        }))
+    }
+
+    /// A group field: its value, or `None` where the layout does not carry it.
+    fn group<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        Ok(self
+            .field(py, key)?
+            .unwrap_or_else(|| py.None().into_bound(py)))
+    }
+
+    /// The frame in the library's form, for the dict form.
+    fn frame(&self) -> OwnedFrame<Message> {
+        OwnedFrame {
+            offset: self.offset,
+            len: self.len,
+            message: Message::Telemetry(self.telemetry),
+        }
+    }
+}
+
+#[pymethods]
+impl PyTelemetry {
+    /// Offset of the frame's first byte in the stream.
+    #[getter]
+    fn offset(&self) -> u64 {
+        self.offset
+    }
+
+    /// The frame's length in bytes (7, 15, 17, 45 or 53).
+    #[getter]
+    fn len(&self) -> usize {
+        self.len
+    }
+
+    /// ``"telemetry"``.
+    #[getter]
+    fn r#type<'py>(&self, py: Python<'py>) -> Bound<'py, PyString> {
+        pyo3::intern!(py, "telemetry").clone()
+    }
+
+    /// The frame's layout: ``"pos7"``, ``"uwb15"``, ``"uwbtof17"``,
+    /// ``"spi45"`` or ``"ble53"``.
+    #[getter]
+    fn layout<'py>(&self, py: Python<'py>) -> Bound<'py, PyString> {
+        PyString::intern(py, self.telemetry.layout.name())
+    }
+
+    /// M1 position, raw 0..4095, or ``None`` (no reading).
+    #[getter]
+    fn m1_pos(&self) -> Option<u16> {
+        self.telemetry.m1_pos
+    }
+
+    /// M2 position, raw 0..4095, or ``None`` (no reading).
+    #[getter]
+    fn m2_pos(&self) -> Option<u16> {
+        self.telemetry.m2_pos
+    }
+
+    /// UWB ranges to anchors 0..3 in mm, a tuple of four (each ``None`` for
+    /// no reading), or ``None`` if the layout carries none.
+    #[getter]
+    fn uwb<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.group(py, "uwb")
+    }
+
+    /// ToF range in mm, or ``None`` (no reading, or not carried).
+    #[getter]
+    fn tof(&self) -> Option<u16> {
+        self.telemetry.tof.flatten()
+    }
+
+    /// The IMU sample (an :class:`Imu`), or ``None`` if not carried.
+    #[getter]
+    fn imu(&self) -> Option<PyImu> {
+        self.telemetry.imu.map(PyImu::from)
+    }
+
+    /// M1's four potentiometer channels, raw 0..4095, or ``None``.
+    #[getter]
+    fn m1_adcs<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.group(py, "m1_adcs")
+    }
+
+    /// M2's two potentiometer channels, raw 0..4095, or ``None``.
+    #[getter]
+    fn m2_adcs<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.group(py, "m2_adcs")
+    }
+
+    /// The item's keys, as in the dict form (groups the layout carries only).
+    fn keys(&self, py: Python<'_>) -> PyResult<Vec<&'static str>> {
+        let mut keys = Vec::with_capacity(TELEMETRY_KEYS.len());
+        for key in TELEMETRY_KEYS {
+            if self.field(py, key)?.is_some() {
+                keys.push(key);
+            }
+        }
+        Ok(keys)
+    }
+
+    /// The value of ``key``, or ``default`` where the item has no such key.
+    #[pyo3(signature = (key, default = None, /))]
+    fn get<'py>(
+        &self,
+        py: Python<'py>,
+        key: &str,
+        default: Option<Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        Ok(match self.field(py, key)? {
+            Some(value) => value,
+            None => default.unwrap_or_else(|| py.None().into_bound(py)),
+        })
+    }
+
+    /// The item as the dict a default decoder returns (lists, an ``imu``
+    /// dict).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.frame())
+    }
+
+    fn __getitem__<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        self.field(py, key)?
+            .ok_or_else(|| PyKeyError::new_err(key.to_owned()))
+    }
+
+    fn __contains__(&self, py: Python<'_>, key: &str) -> PyResult<bool> {
+        Ok(self.field(py, key)?.is_some())
+    }
+
+    fn __richcmp__<'py>(
+        &self,
+        py: Python<'py>,
+        other: &Bound<'py, PyAny>,
+        op: CompareOp,
+    ) -> PyResult<Py<PyAny>> {
+        let equal = if let Ok(other) = other.cast::<PyTelemetry>() {
+            let other = other.get();
+            Some(
+                (self.offset, self.len, self.telemetry)
+                    == (other.offset, other.len, other.telemetry),
+            )
+        } else if other.is_instance_of::<PyDict>() {
+            Some(self.to_dict(py)?.eq(other)?)
+        } else {
+            None
+        };
+        compared(py, equal, op)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let mut parts = Vec::new();
+        for key in self.keys(py)? {
+            if key != "type" {
+                parts.push(format!("{key}={}", self.group(py, key)?.repr()?));
+            }
+        }
+        Ok(format!("Telemetry({})", parts.join(", ")))
+    }
+}
+
+/// One IMU sample of a :class:`Telemetry` item: ``ax``, ``ay``, ``az``
+/// (m/s², gravity included) and ``gx``, ``gy``, ``gz`` (rad/s), each the
+/// exact value of the wire's ``f32`` as a ``float`` (NaN and infinities
+/// included). ``imu["az"]`` and :meth:`to_dict` as for the item; ``==``
+/// compares bit patterns (a NaN sample equals itself) or with a dict.
+#[pyclass(module = "robowire.omnitiles", name = "Imu", frozen)]
+pub struct PyImu {
+    imu: Imu,
+    /// Acceleration along x, m/s².
+    #[pyo3(get)]
+    ax: f64,
+    /// Acceleration along y, m/s².
+    #[pyo3(get)]
+    ay: f64,
+    /// Acceleration along z, m/s² (about +9.8 at rest).
+    #[pyo3(get)]
+    az: f64,
+    /// Angular rate about x, rad/s.
+    #[pyo3(get)]
+    gx: f64,
+    /// Angular rate about y, rad/s.
+    #[pyo3(get)]
+    gy: f64,
+    /// Angular rate about z, rad/s.
+    #[pyo3(get)]
+    gz: f64,
+}
+
+impl From<Imu> for PyImu {
+    fn from(imu: Imu) -> Self {
+        let [ax, ay, az, gx, gy, gz] = imu.to_array().map(exact_f64);
+        Self {
+            imu,
+            ax,
+            ay,
+            az,
+            gx,
+            gy,
+            gz,
+        }
+    }
+}
+
+impl PyImu {
+    fn value(&self, key: &str) -> Option<f64> {
+        Imu::NAMES
+            .iter()
+            .position(|&name| name == key)
+            .map(|i| exact_f64(self.imu.to_array()[i]))
+    }
+}
+
+#[pymethods]
+impl PyImu {
+    /// The six names, in wire order.
+    fn keys(&self) -> [&'static str; 6] {
+        Imu::NAMES
+    }
+
+    /// The sample as the dict form's ``imu`` dict.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.imu)
+    }
+
+    fn __getitem__(&self, key: &str) -> PyResult<f64> {
+        self.value(key)
+            .ok_or_else(|| PyKeyError::new_err(key.to_owned()))
+    }
+
+    fn __contains__(&self, key: &str) -> bool {
+        self.value(key).is_some()
+    }
+
+    fn __richcmp__<'py>(
+        &self,
+        py: Python<'py>,
+        other: &Bound<'py, PyAny>,
+        op: CompareOp,
+    ) -> PyResult<Py<PyAny>> {
+        let equal = if let Ok(other) = other.cast::<PyImu>() {
+            Some(self.imu == other.get().imu)
+        } else if other.is_instance_of::<PyDict>() {
+            Some(self.to_dict(py)?.eq(other)?)
+        } else {
+            None
+        };
+        compared(py, equal, op)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let mut parts = Vec::new();
+        for (name, value) in Imu::NAMES.iter().zip(self.imu.to_array()) {
+            let value = exact_f64(value).into_pyobject(py)?;
+            parts.push(format!("{name}={}", value.repr()?));
+        }
+        Ok(format!("Imu({})", parts.join(", ")))
+    }
+}

@@ -1,0 +1,118 @@
+"""feed_array: the frames of a chunk as numpy structured arrays, one per
+message kind, with the same values as the items and independent of chunking."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import pytest
+
+np = pytest.importorskip("numpy")
+
+from robowire import omnitiles, pixy2, telemetrix  # noqa: E402
+
+from conftest import CASES, Case, decode_all, f32_bits  # noqa: E402
+
+OMNI_STREAMS = [c for c in CASES if c.make is omnitiles.Decoder]
+NO_READING = 0xFFFF
+
+
+def feed_arrays(case: Case, chunk: int | None = None) -> dict[str, Any]:
+    """`case`'s capture through feed_array, `chunk` bytes at a time, joined."""
+    decoder = case.decoder(errors=False)
+    data = case.input()
+    step = chunk or len(data)
+    parts: dict[str, list[Any]] = {}
+    for start in range(0, len(data), step):
+        for kind, array in decoder.feed_array(data[start : start + step]).items():
+            parts.setdefault(kind, []).append(array)
+    return {kind: np.concatenate(arrays) for kind, arrays in parts.items()}
+
+
+def row_of(item: dict[str, Any]) -> dict[str, Any]:
+    """The record feed_array gives for a dict-form item."""
+    row = {k: v for k, v in item.items() if k not in ("type", "layout", "uwb", "imu", "m1_adcs", "m2_adcs")}
+    if item["type"] != "telemetry":
+        return row
+    for key in ("m1_pos", "m2_pos", "tof"):
+        row[key] = NO_READING if row.get(key) is None else row[key]
+    for key, n in (("uwb", 4), ("m1_adcs", 4), ("m2_adcs", 2)):
+        values = item.get(key) or [None] * n
+        for i, v in enumerate(values):
+            row[f"{key}_{i}"] = NO_READING if v is None else v
+    imu = item.get("imu") or {k: math.nan for k in ("ax", "ay", "az", "gx", "gy", "gz")}
+    row.update(imu)
+    return row
+
+
+@pytest.mark.parametrize("case", OMNI_STREAMS, ids=[c.name for c in OMNI_STREAMS])
+def test_arrays_hold_the_items_values(case: Case) -> None:
+    items = decode_all(case, errors=False)
+    arrays = feed_arrays(case)
+    assert sum(len(a) for a in arrays.values()) == len(items) > 0
+    seen = {kind: 0 for kind in arrays}
+    for item in items:
+        array = arrays[item["type"]]
+        record = array[seen[item["type"]]]
+        seen[item["type"]] += 1
+        expected = row_of(item)
+        assert list(array.dtype.names) == list(expected) or set(array.dtype.names) == set(expected)
+        for name, value in expected.items():
+            got = record[name].item()
+            if isinstance(value, float):
+                assert f32_bits(got) == f32_bits(value) or (math.isnan(got) and math.isnan(value)), name
+            else:
+                assert got == value, name
+
+
+@pytest.mark.parametrize("case", OMNI_STREAMS, ids=[c.name for c in OMNI_STREAMS])
+@pytest.mark.parametrize("chunk", [1, 7, 53, 4096])
+def test_arrays_do_not_depend_on_chunking(case: Case, chunk: int) -> None:
+    whole = feed_arrays(case)
+    pieces = feed_arrays(case, chunk)
+    assert whole.keys() == pieces.keys()
+    for kind in whole:
+        assert whole[kind].tobytes() == pieces[kind].tobytes(), kind
+
+
+def test_arrays_are_flat_records_for_pandas() -> None:
+    arrays = feed_arrays(CASES[0])
+    telemetry = arrays["telemetry"]
+    assert telemetry.ndim == 1
+    assert all(telemetry.dtype[name].shape == () for name in telemetry.dtype.names)
+    assert telemetry.dtype["ax"] == np.dtype("<f4") and telemetry.dtype["m1_pos"] == np.dtype("<u2")
+    pandas = pytest.importorskip("pandas")
+    frame = pandas.DataFrame(telemetry)
+    assert list(frame.columns) == list(telemetry.dtype.names) and len(frame) == len(telemetry)
+
+
+def test_not_carried_groups_are_sentinels() -> None:
+    (pos7,) = omnitiles.Decoder(source="tile", layouts="pos7").feed_array(bytes.fromhex("a5 60 d0 07 ff ff 35")).values()
+    record = pos7[0]
+    assert (record["len"], record["m1_pos"], record["m2_pos"], record["uwb_0"], record["tof"]) == (7, 2000, 0xFFFF, 0xFFFF, 0xFFFF)
+    assert math.isnan(record["az"])
+
+
+def test_rejections_are_counted_and_frames_kept() -> None:
+    decoder = omnitiles.Decoder(source="host", errors=True)
+    arrays = decoder.feed_array(bytes.fromhex("a5 30 c8 f7 a5 50 50 a5 30"))
+    assert list(arrays) == ["ping"] and arrays["ping"]["offset"].tolist() == [4]
+    assert decoder.stats["checksum_failures"] == 1
+    assert decoder.feed_array(bytes.fromhex("c8 f8"))["m1_extend"][0].tolist() == (7, 4, 200)
+    assert decoder.feed_array(b"") == {}
+
+
+@pytest.mark.parametrize("decoder", [pixy2.Decoder(), telemetrix.Decoder()], ids=["pixy2", "telemetrix"])
+def test_protocols_without_tables_refuse_before_decoding(decoder: Any) -> None:
+    with pytest.raises(NotImplementedError, match="OmniTiles"):
+        decoder.feed_array(b"\x03\x02\x0a\x01")
+    assert decoder.stats["bytes"] == 0
+
+
+@pytest.mark.parametrize("bad", ["a5 50 50", 3, None])
+def test_feed_array_refuses_non_bytes(bad: Any) -> None:
+    decoder = omnitiles.Decoder()
+    with pytest.raises(TypeError, match="bytes"):
+        decoder.feed_array(bad)
+    assert decoder.stats["bytes"] == 0

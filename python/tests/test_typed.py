@@ -1,0 +1,138 @@
+"""Typed items (``typed=True``): an omnitiles.Telemetry per telemetry frame,
+a robowire.Item for every other message and rejection; attributes, keys,
+to_dict(), ==, repr, and the same items however the bytes are split."""
+
+from __future__ import annotations
+
+import gc
+import math
+import struct
+import warnings
+from typing import Any
+
+import pytest
+
+import robowire
+from robowire import omnitiles, pixy2, telemetrix
+
+from conftest import CASES, Case, decode_all
+
+POS7 = bytes.fromhex("a5 60 d0 07 ff ff 35")
+UWB15 = bytes.fromhex("a5 60 d0 07 e8 03 dc 05 c4 09 ff ff b8 0b 91")
+
+
+def attribute_form(value: Any) -> Any:
+    """A dict-form value as the typed item's attribute gives it: lists are tuples."""
+    return tuple(value) if isinstance(value, list) else value
+
+
+def test_typed_items_equal_the_dicts(case: Case) -> None:
+    typed = decode_all(case, typed=True)
+    dicts = decode_all(case)
+    assert len(typed) == len(dicts) > 0
+    assert typed == dicts and dicts == typed
+    assert [item.to_dict() for item in typed] == dicts
+    for item, d in zip(typed, dicts):
+        assert type(item) is (omnitiles.Telemetry if d.get("type") == "telemetry" else robowire.Item)
+        for key, value in d.items():
+            assert item[key] == attribute_form(value) or item[key] == value, key
+            assert getattr(item, key) == item[key], key
+            assert key in item
+
+
+@pytest.mark.parametrize("chunk", [1, 5, 53, 4096])
+def test_typed_items_do_not_depend_on_chunking(case: Case, chunk: int) -> None:
+    if case.datagrams:
+        pytest.skip("datagrams are decoded whole")
+    assert decode_all(case, chunk, typed=True) == decode_all(case, typed=True)
+
+
+def test_telemetry_attributes() -> None:
+    data = CASES[1].input()
+    (t, *_) = omnitiles.Decoder(source="tile", layouts="ble53", typed=True).feed(data)
+    assert isinstance(t, omnitiles.Telemetry)
+    assert (t.offset, t.len, t.type, t.layout) == (0, 53, "telemetry", "ble53")
+    assert (t.m1_pos, t.m2_pos, t.tof) == (1104, 2852, 448)
+    assert t.uwb == (4579, 3151, 3112, None)
+    assert t.m1_adcs == (1103, 1107, 2255, 2252) and t.m2_adcs == (2854, 2851)
+    assert isinstance(t.imu, omnitiles.Imu)
+    # The f32's exact value, as struct reads it.
+    assert t.imu.ax == struct.unpack("<f", data[16:20])[0] == t["imu"]["ax"]
+    assert t.imu == t.to_dict()["imu"] and t.imu.to_dict() == t.to_dict()["imu"]
+    assert list(t.imu.keys()) == ["ax", "ay", "az", "gx", "gy", "gz"]
+    assert t.keys() == list(t.to_dict())
+    assert t.get("nope", 5) == 5 and t.get("tof") == 448
+
+
+def test_groups_not_carried_and_no_reading() -> None:
+    (t,) = omnitiles.Decoder(source="tile", layouts="pos7", typed=True).feed(POS7)
+    assert (t.m1_pos, t.m2_pos) == (2000, None)  # 0xffff: no reading
+    assert t.uwb is None and t.tof is None and t.imu is None and t.m1_adcs is None
+    assert "uwb" not in t and "m2_pos" in t
+    with pytest.raises(KeyError):
+        t["uwb"]
+    assert t.to_dict() == {"offset": 0, "len": 7, "type": "telemetry", "layout": "pos7", "m1_pos": 2000, "m2_pos": None}
+    (u,) = omnitiles.Decoder(source="tile", layouts="uwb15", typed=True).feed(UWB15)
+    assert u.uwb == (1500, 2500, None, 3000) and "tof" not in u
+
+
+def test_repr_eq_and_immutability() -> None:
+    (t,) = omnitiles.Decoder(source="tile", layouts="uwb15", typed=True).feed(UWB15)
+    assert repr(t) == (
+        "Telemetry(offset=0, len=15, layout='uwb15', m1_pos=2000, m2_pos=1000, uwb=(1500, 2500, None, 3000))"
+    )
+    (same,) = omnitiles.Decoder(source="tile", layouts="uwb15", typed=True).feed(UWB15)
+    assert t == same and not (t != same)
+    assert t != omnitiles.Decoder(source="tile", layouts="uwb15", typed=True).feed(b"\x00" + UWB15)[0]
+    assert (t == 3) is False
+    with pytest.raises(AttributeError):
+        t.m1_pos = 5  # type: ignore[misc]
+    # One object per frame, not tracked by the garbage collector.
+    assert not gc.is_tracked(t)
+
+
+def test_imu_compares_bit_patterns() -> None:
+    body = bytes([0x60]) + bytes(14) + struct.pack("<6I", 0x7FC00000, 0, 0, 0, 0, 0) + bytes(12)
+    frame = b"\xa5" + body + bytes([sum(body) & 0xFF])
+    decoder = omnitiles.Decoder(source="tile", layouts="ble53", typed=True)
+    (a,) = decoder.feed(frame)
+    (b,) = decoder.feed(frame)
+    assert math.isnan(a.imu.ax) and a.imu == b.imu
+    assert "Imu(ax=nan, ay=0.0" in repr(a.imu)
+
+
+def test_other_messages_are_items_with_attributes() -> None:
+    (cmd,) = omnitiles.Decoder(typed=True).feed(bytes.fromhex("a5 70 0a fb 14 89"))
+    assert isinstance(cmd, robowire.Item)
+    assert (cmd.type, cmd.vx, cmd.vy, cmd.omega, cmd.offset) == ("base_velocity", 10, -5, 20, 0)
+    with pytest.raises(AttributeError, match="base_velocity item has no field speed"):
+        cmd.speed
+    (report,) = telemetrix.Decoder(source="pico", typed=True).feed(bytes.fromhex("05 0b 09 0a 00 77"))
+    assert (report.type, report.trig, report.echo, report.cm) == ("sonar_distance", 9, 10, 119)
+    (result,) = pixy2.Decoder(source="device", typed=True).feed(bytes.fromhex("af c1 01 04 3d 00 3d 00 00 00"))
+    assert (result.type, result.value, result.checksum) == ("result", 61, True)
+    (bad, ping) = omnitiles.Decoder(source="host", typed=True, errors=True).feed(bytes.fromhex("a5 30 c8 f7 a5 50 50"))
+    assert (bad.error, bad.expected, bad.found) == ("checksum", 0xF8, 0xF7)
+    assert ping.type == "ping"
+
+
+def test_typed_items_encode_back() -> None:
+    data = CASES[0].input()
+    for item in omnitiles.Decoder(typed=True).feed(data):
+        assert omnitiles.encode(item) == data[item.offset : item.offset + item.len]
+    (report,) = telemetrix.Decoder(source="pico", typed=True).feed(bytes.fromhex("04 03 1a 04 c9"))
+    assert telemetrix.encode(report) == bytes.fromhex("04 03 1a 04 c9")
+
+
+def test_options() -> None:
+    decoder = omnitiles.Decoder(source="tile", typed=True)
+    assert decoder.typed and not decoder.lazy
+    assert "typed=True" in repr(decoder)
+    assert omnitiles.DatagramDecoder(typed=True).typed
+    with pytest.raises(ValueError, match="typed=True"):
+        telemetrix.Decoder(lazy=True, typed=True)
+    with pytest.warns(DeprecationWarning, match="lazy=True is deprecated"):
+        assert pixy2.Decoder(lazy=True).lazy
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert not omnitiles.Decoder().typed
