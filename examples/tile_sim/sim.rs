@@ -328,6 +328,30 @@ fn ble_telemetry() -> Result<Vec<u8>, EncodeError> {
     Ok(out)
 }
 
+/// The tile and line noise of `ble_telemetry.bin`, without end: one frame
+/// (with the noise around it) per call, for a live link (`tile_sim --pty`).
+pub struct LiveTelemetry {
+    tile: Tile,
+    rng: Rng,
+}
+
+impl LiveTelemetry {
+    /// The stream `ble_telemetry.bin` begins with.
+    pub fn new() -> LiveTelemetry {
+        LiveTelemetry {
+            tile: Tile::new(0x0d1e_5ea5),
+            rng: Rng::new(0x5eed_0001),
+        }
+    }
+
+    /// Append the next frame, and the noise around it, to `out`.
+    pub fn next_into(&mut self, out: &mut Vec<u8>) -> Result<(), EncodeError> {
+        let t = self.tile.step();
+        noisy(&mut self.rng, out, &frame(&t)?, 30, 10);
+        Ok(())
+    }
+}
+
 /// One BLE notification per line, as a BLE sniffer or the SDK logs them.
 /// The first notifications come before the nRF's first SPI frame (positions
 /// 0, nothing else measured yet); a few later ones are corrupted.
