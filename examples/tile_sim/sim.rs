@@ -330,11 +330,13 @@ fn ble_telemetry() -> Result<Vec<u8>, EncodeError> {
 
 /// The tile and line noise of `ble_telemetry.bin`, without end: one frame
 /// (with the noise around it) per call, for a live link (`tile_sim --pty`).
+#[allow(dead_code)] // tests/sample_data.rs includes this file for the captures only
 pub struct LiveTelemetry {
     tile: Tile,
     rng: Rng,
 }
 
+#[allow(dead_code)]
 impl LiveTelemetry {
     /// The stream `ble_telemetry.bin` begins with.
     pub fn new() -> LiveTelemetry {
