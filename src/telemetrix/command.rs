@@ -15,56 +15,139 @@ use crate::{Encode, EncodeError};
 
 use command_id as id;
 
-/// Whether `dialect` defines command `id` (and robowire covers it there).
-pub(crate) const fn command_known(dialect: Dialect, id: u8) -> bool {
-    match dialect {
-        Dialect::Mirte13 => id <= id::BOOTLOADER_RESET,
-        Dialect::Mirte12 => id <= id::PING,
-        Dialect::Upstream11 => id <= id::SPI_CS_CONTROL,
-    }
+/// The codec's parts that come from the command table: the dialect and
+/// `LEN` tables, `Command::id`, and the payloads of the `plain` rows (the
+/// `custom` ones are [`Command::write_custom`] and [`parse_custom`]).
+macro_rules! command_codec {
+    ($($n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
+        $codec:ident $($p:ident { $($f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* })?;)*) => {
+        /// Whether `dialect` defines command `id` (and robowire covers it there).
+        pub(crate) const fn command_known(dialect: Dialect, id: u8) -> bool {
+            match id {
+                $($n => matches!(dialect, $(Dialect::$d)|+),)*
+                _ => false,
+            }
+        }
+
+        /// The smallest and largest `LEN` a command can have, or `None` for
+        /// an unknown id. Used to reject a candidate from its first two bytes.
+        pub(crate) const fn command_len_range(dialect: Dialect, id: u8) -> Option<(u8, u8)> {
+            if !command_known(dialect, id) {
+                return None;
+            }
+            Some(match id {
+                $($n => len_range!(dialect, $lens),)*
+                _ => return None,
+            })
+        }
+
+        impl Command<'_> {
+            /// The command id.
+            pub const fn id(&self) -> u8 {
+                match self {
+                    $($(Command::$v { .. })|+ => $n,)*
+                }
+            }
+
+            fn write_payload(&self, w: &mut Writer<'_>) {
+                match *self {
+                    $($(Command::$v { .. })|+ => {
+                        write_row!(self, w, $codec $($p { $($f : $kind $(($($arg)*))?),* })?)
+                    })*
+                }
+            }
+        }
+
+        fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>, Error> {
+            Ok(match r.id() {
+                $($n => parse_row!(dialect, r, $codec $($p { $($f : $kind $(($($arg)*))? $key),* })?),)*
+                _ => return Err(Error::UnknownId { id: r.id() }),
+            })
+        }
+    };
 }
 
-/// The smallest and largest `LEN` a command can have, or `None` for an unknown
-/// id. Used to reject a candidate from its first two bytes.
-pub(crate) const fn command_len_range(dialect: Dialect, id: u8) -> Option<(u8, u8)> {
-    if !command_known(dialect, id) {
-        return None;
-    }
-    let up = matches!(dialect, Dialect::Upstream11);
-    Some(match id {
-        id::SET_PIN_MODE => (3, 6),
-        // Up to 9 pins and, as a real host may send, 1 or 2 trailing bytes
-        // that the firmware ignores (it takes (LEN - 1) / 3 pins).
-        id::PWM_WRITE if matches!(dialect, Dialect::Mirte13) => (4, 30),
-        id::PWM_WRITE => (4, 4),
-        id::SERVO_ATTACH => (2, 6),
-        id::SERVO_WRITE | id::I2C_BEGIN | id::SPI_READ_BLOCKING => (4, 4),
-        id::I2C_READ if up => (6, 6),
-        id::I2C_READ => (7, 7),
-        id::I2C_WRITE if up => (6, 30),
-        id::I2C_WRITE => (7, 30),
-        id::SPI_INIT => (10, 30),
-        id::SPI_WRITE_BLOCKING => (3, 30),
-        id::INITIALIZE_NEO_PIXELS | id::SET_NEO_PIXEL => (6, 6),
-        id::CLEAR_ALL_NEO_PIXELS => (1, 2),
-        id::FILL_NEO_PIXELS | id::SPI_SET_FORMAT => (5, 5),
-        id::ENCODER_NEW if matches!(dialect, Dialect::Mirte12) => (4, 4),
-        id::ENCODER_NEW => (5, 5),
-        id::SENSOR_NEW if matches!(dialect, Dialect::Mirte12) => (3, 9),
-        id::SENSOR_NEW => (3, 10),
-        id::MODULE_NEW => (3, 30),
-        id::MODULE_DATA => (2, 30),
-        id::DIGITAL_WRITE | id::MODIFY_REPORTING | id::SONAR_NEW | id::SPI_CS_CONTROL => (3, 3),
-        id::SERIAL_LOOP_BACK
-        | id::SERVO_DETACH
-        | id::DHT_NEW
-        | id::SET_SCAN_DELAY
-        | id::PING
-        | id::SET_ID
-        | id::FEATURE_CHECK => (2, 2),
-        _ => (1, 1),
-    })
+/// A row's `LEN` range: one pair, or a `match` on the dialect.
+macro_rules! len_range {
+    ($dialect:ident, ($lo:literal, $hi:literal)) => {
+        ($lo, $hi)
+    };
+    ($dialect:ident, { $($arms:tt)* }) => {
+        match $dialect { $($arms)* }
+    };
 }
+
+/// Write a row's payload.
+macro_rules! write_row {
+    ($command:ident, $w:ident, custom) => {
+        $command.write_custom($w)
+    };
+    ($command:ident, $w:ident, plain $p:ident {}) => {{}};
+    ($command:ident, $w:ident, plain $p:ident { $($f:ident : $kind:ident $(($($args:tt)*))?),* }) => {
+        if let Command::$p { $($f),* } = *$command {
+            $(write_field!($w, $f, $kind);)*
+        }
+    };
+}
+
+/// Write one field of a `plain` row.
+macro_rules! write_field {
+    ($w:ident, $f:ident, flag) => {
+        $w.flag($f)
+    };
+    ($w:ident, $f:ident, level) => {
+        $w.flag($f)
+    };
+    ($w:ident, $f:ident, u16) => {
+        $w.u16($f)
+    };
+    ($w:ident, $f:ident, rgb) => {
+        $w.bytes(&[$f.r, $f.g, $f.b])
+    };
+    // u8, pin, range
+    ($w:ident, $f:ident, $kind:ident) => {
+        $w.u8($f)
+    };
+}
+
+/// Parse a row's payload.
+macro_rules! parse_row {
+    ($dialect:ident, $r:ident, custom) => {
+        parse_custom($dialect, $r)?
+    };
+    ($dialect:ident, $r:ident, plain $p:ident { $($f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* }) => {
+        Command::$p { $($f: read_field!($r, $f, $key, $kind $(($($arg)*))?),)* }
+    };
+}
+
+/// Read and check one field of a `plain` row.
+macro_rules! read_field {
+    ($r:ident, $f:ident, $key:literal, u8) => {
+        $r.u8()?
+    };
+    ($r:ident, $f:ident, $key:literal, u16) => {
+        $r.u16()?
+    };
+    ($r:ident, $f:ident, $key:literal, pin) => {
+        $r.pin($key)?
+    };
+    ($r:ident, $f:ident, $key:literal, flag) => {
+        $r.flag($key)?
+    };
+    ($r:ident, $f:ident, $key:literal, level) => {
+        $r.flag($key)?
+    };
+    ($r:ident, $f:ident, $key:literal, rgb) => {
+        rgb($r)?
+    };
+    ($r:ident, $f:ident, $key:literal, range($lo:literal, $hi:literal)) => {{
+        let v = $r.u8()?;
+        ensure(($lo..=$hi).contains(&v), $r.id(), stringify!($f))?;
+        v
+    }};
+}
+
+super::table::command_table!(command_codec);
 
 /// Pull resistor of a digital input (SET_PIN_MODE modes 0, 3, 4).
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -457,53 +540,6 @@ pub enum Command<'a> {
     BootloaderReset,
 }
 
-impl Command<'_> {
-    /// The command id.
-    pub const fn id(&self) -> u8 {
-        match self {
-            Command::LoopBack { .. } => id::SERIAL_LOOP_BACK,
-            Command::SetPinMode { .. } => id::SET_PIN_MODE,
-            Command::DigitalWrite { .. } => id::DIGITAL_WRITE,
-            Command::PwmWrite(_) => id::PWM_WRITE,
-            Command::ModifyReporting(_) => id::MODIFY_REPORTING,
-            Command::GetFirmwareVersion => id::GET_FIRMWARE_VERSION,
-            Command::GetUniqueId => id::GET_PICO_UNIQUE_ID,
-            Command::ServoAttach { .. } => id::SERVO_ATTACH,
-            Command::ServoWrite { .. } => id::SERVO_WRITE,
-            Command::ServoDetach { .. } => id::SERVO_DETACH,
-            Command::I2cBegin { .. } => id::I2C_BEGIN,
-            Command::I2cRead { .. } | Command::I2cReadUpstream { .. } => id::I2C_READ,
-            Command::I2cWrite { .. } | Command::I2cWriteUpstream { .. } => id::I2C_WRITE,
-            Command::SonarNew { .. } => id::SONAR_NEW,
-            Command::DhtNew { .. } => id::DHT_NEW,
-            Command::StopAllReports => id::STOP_ALL_REPORTS,
-            Command::EnableAllReports => id::ENABLE_ALL_REPORTS,
-            Command::ResetData => id::RESET_DATA,
-            Command::ResetBoard => id::RESET_BOARD,
-            Command::InitNeoPixels { .. } => id::INITIALIZE_NEO_PIXELS,
-            Command::ShowNeoPixels => id::SHOW_NEO_PIXELS,
-            Command::SetNeoPixel { .. } => id::SET_NEO_PIXEL,
-            Command::ClearAllNeoPixels { .. } => id::CLEAR_ALL_NEO_PIXELS,
-            Command::FillNeoPixels { .. } => id::FILL_NEO_PIXELS,
-            Command::SpiInit { .. } => id::SPI_INIT,
-            Command::SpiWrite { .. } => id::SPI_WRITE_BLOCKING,
-            Command::SpiRead { .. } => id::SPI_READ_BLOCKING,
-            Command::SpiSetFormat { .. } => id::SPI_SET_FORMAT,
-            Command::SpiCsControl { .. } => id::SPI_CS_CONTROL,
-            Command::SetScanDelay { .. } => id::SET_SCAN_DELAY,
-            Command::EncoderNew { .. } => id::ENCODER_NEW,
-            Command::SensorNew(_) => id::SENSOR_NEW,
-            Command::Ping { .. } => id::PING,
-            Command::ModuleNew(_) => id::MODULE_NEW,
-            Command::ModuleData { .. } => id::MODULE_DATA,
-            Command::GetId => id::GET_ID,
-            Command::SetId { .. } => id::SET_ID,
-            Command::FeatureCheck { .. } => id::FEATURE_CHECK,
-            Command::BootloaderReset => id::BOOTLOADER_RESET,
-        }
-    }
-}
-
 impl<'a> Command<'a> {
     /// Frame length of this command in `dialect`.
     pub fn encoded_len_in(&self, _dialect: Dialect) -> usize {
@@ -650,9 +686,9 @@ impl<'a> Command<'a> {
         w.patch_len();
     }
 
-    fn write_payload(&self, w: &mut Writer<'_>) {
+    /// Write the payload of a `custom` row of the command table.
+    fn write_custom(&self, w: &mut Writer<'_>) {
         match self {
-            Command::LoopBack { byte } => w.u8(*byte),
             Command::SetPinMode { pin, mode } => {
                 w.u8(*pin);
                 match *mode {
@@ -704,12 +740,6 @@ impl<'a> Command<'a> {
                     w.u16(*max);
                 }
             }
-            Command::ServoWrite { pin, pulse_us } => {
-                w.u8(*pin);
-                w.u16(*pulse_us);
-            }
-            Command::ServoDetach { pin } | Command::DhtNew { pin } => w.u8(*pin),
-            Command::I2cBegin { port, sda, scl } => w.bytes(&[*port, *sda, *scl]),
             Command::I2cRead {
                 port,
                 addr,
@@ -744,36 +774,8 @@ impl<'a> Command<'a> {
                 w.bytes(&[*port, *addr, data.len() as u8, *no_stop]);
                 w.bytes(data);
             }
-            Command::SonarNew { trig, echo } => w.bytes(&[*trig, *echo]),
-            Command::StopAllReports
-            | Command::EnableAllReports
-            | Command::ResetData
-            | Command::ResetBoard
-            | Command::ShowNeoPixels
-            | Command::GetFirmwareVersion
-            | Command::GetUniqueId
-            | Command::GetId
-            | Command::BootloaderReset => {}
-            Command::InitNeoPixels { pin, count, rgb } => {
-                w.bytes(&[*pin, *count, rgb.r, rgb.g, rgb.b]);
-            }
-            Command::SetNeoPixel {
-                index,
-                rgb,
-                auto_show,
-            } => {
-                w.bytes(&[*index, rgb.r, rgb.g, rgb.b]);
-                w.flag(*auto_show);
-            }
-            Command::ClearAllNeoPixels { auto_show } => {
-                if let Some(a) = auto_show {
-                    w.flag(*a);
-                }
-            }
-            Command::FillNeoPixels { rgb, auto_show } => {
-                w.bytes(&[rgb.r, rgb.g, rgb.b]);
-                w.flag(*auto_show);
-            }
+            // Without the byte, nothing (the `_` arm).
+            Command::ClearAllNeoPixels { auto_show: Some(a) } => w.flag(*a),
             Command::SpiInit {
                 port,
                 pin_a,
@@ -791,22 +793,6 @@ impl<'a> Command<'a> {
                 w.bytes(&[*port, data.len() as u8]);
                 w.bytes(data);
             }
-            Command::SpiRead { port, len, tx_fill } => w.bytes(&[*port, *len, *tx_fill]),
-            Command::SpiSetFormat {
-                port,
-                data_bits,
-                cpol,
-                cpha,
-            } => {
-                w.bytes(&[*port, *data_bits]);
-                w.flag(*cpol);
-                w.flag(*cpha);
-            }
-            Command::SpiCsControl { cs_pin, high } => {
-                w.u8(*cs_pin);
-                w.flag(*high);
-            }
-            Command::SetScanDelay { delay_ms } => w.u8(*delay_ms),
             Command::EncoderNew {
                 kind,
                 pin_a,
@@ -823,14 +809,13 @@ impl<'a> Command<'a> {
                 }
             }
             Command::SensorNew(s) => s.write(w),
-            Command::Ping { counter } => w.u8(*counter),
             Command::ModuleNew(m) => m.write(w),
             Command::ModuleData { module_num, data } => {
                 w.u8(*module_num);
                 w.bytes(data);
             }
-            Command::SetId { id } => w.u8(*id),
-            Command::FeatureCheck { msg_type } => w.u8(*msg_type),
+            // The `plain` rows: written by `write_payload`.
+            _ => {}
         }
     }
 }
@@ -891,10 +876,10 @@ fn counted<'a>(r: &mut Reader<'a>, field: &'static str, min: u8) -> Result<&'a [
     r.take(usize::from(n))
 }
 
-fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>, Error> {
+/// Parse the payload of a `custom` row of the command table.
+fn parse_custom<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>, Error> {
     let cmd = r.id();
     Ok(match cmd {
-        id::SERIAL_LOOP_BACK => Command::LoopBack { byte: r.u8()? },
         id::SET_PIN_MODE => {
             let pin = r.u8()?;
             let mode = match r.u8()? {
@@ -978,8 +963,6 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
             };
             Command::ModifyReporting(m)
         }
-        id::GET_FIRMWARE_VERSION => Command::GetFirmwareVersion,
-        id::GET_PICO_UNIQUE_ID => Command::GetUniqueId,
         id::SERVO_ATTACH => {
             let pin = r.pin("pin")?;
             let pulse_range = if r.remaining() > 0 {
@@ -989,16 +972,6 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
             };
             Command::ServoAttach { pin, pulse_range }
         }
-        id::SERVO_WRITE => Command::ServoWrite {
-            pin: r.pin("pin")?,
-            pulse_us: r.u16()?,
-        },
-        id::SERVO_DETACH => Command::ServoDetach { pin: r.pin("pin")? },
-        id::I2C_BEGIN => Command::I2cBegin {
-            port: port(r)?,
-            sda: r.pin("sda")?,
-            scl: r.pin("scl")?,
-        },
         id::I2C_READ if dialect.is_mirte() => {
             let (port, addr, msg_id, reg) = (port(r)?, i2c_addr(r)?, r.u8()?, r.u8()?);
             let len = r.u8()?;
@@ -1055,45 +1028,12 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
                 data: r.take(usize::from(n))?,
             }
         }
-        id::SONAR_NEW => Command::SonarNew {
-            trig: r.pin("trig")?,
-            echo: r.pin("echo")?,
-        },
-        id::DHT_NEW => Command::DhtNew { pin: r.pin("pin")? },
-        id::STOP_ALL_REPORTS => Command::StopAllReports,
-        id::ENABLE_ALL_REPORTS => Command::EnableAllReports,
-        id::RESET_DATA => Command::ResetData,
-        id::RESET_BOARD => Command::ResetBoard,
-        id::INITIALIZE_NEO_PIXELS => {
-            let pin = r.pin("pin")?;
-            let count = r.u8()?;
-            ensure(count <= 100, cmd, "count")?;
-            Command::InitNeoPixels {
-                pin,
-                count,
-                rgb: rgb(r)?,
-            }
-        }
-        id::SHOW_NEO_PIXELS => Command::ShowNeoPixels,
-        id::SET_NEO_PIXEL => {
-            let index = r.u8()?;
-            ensure(index < 100, cmd, "index")?;
-            Command::SetNeoPixel {
-                index,
-                rgb: rgb(r)?,
-                auto_show: r.flag("auto_show")?,
-            }
-        }
         id::CLEAR_ALL_NEO_PIXELS => Command::ClearAllNeoPixels {
             auto_show: if r.remaining() > 0 {
                 Some(r.flag("auto_show")?)
             } else {
                 None
             },
-        },
-        id::FILL_NEO_PIXELS => Command::FillNeoPixels {
-            rgb: rgb(r)?,
-            auto_show: r.flag("auto_show")?,
         },
         id::SPI_INIT => {
             let port = port(r)?;
@@ -1115,32 +1055,6 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
             port: port(r)?,
             data: counted(r, "len", 0)?,
         },
-        id::SPI_READ_BLOCKING => {
-            let port = port(r)?;
-            let len = r.u8()?;
-            ensure(len <= 60, cmd, "len")?;
-            Command::SpiRead {
-                port,
-                len,
-                tx_fill: r.u8()?,
-            }
-        }
-        id::SPI_SET_FORMAT => {
-            let port = port(r)?;
-            let data_bits = r.u8()?;
-            ensure((4..=16).contains(&data_bits), cmd, "data_bits")?;
-            Command::SpiSetFormat {
-                port,
-                data_bits,
-                cpol: r.flag("cpol")?,
-                cpha: r.flag("cpha")?,
-            }
-        }
-        id::SPI_CS_CONTROL => Command::SpiCsControl {
-            cs_pin: r.pin("cs_pin")?,
-            high: r.flag("level")?,
-        },
-        id::SET_SCAN_DELAY => Command::SetScanDelay { delay_ms: r.u8()? },
         id::ENCODER_NEW => {
             // The firmware sets up a quadrature encoder for any type but 1;
             // type 3 is accepted as that, and flagged as a quirk.
@@ -1175,7 +1089,6 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
             }
         }
         id::SENSOR_NEW => Command::SensorNew(SensorNew::parse(r, dialect)?),
-        id::PING => Command::Ping { counter: r.u8()? },
         id::MODULE_NEW => Command::ModuleNew(ModuleNew::parse(r)?),
         id::MODULE_DATA => {
             let module_num = r.u8()?;
@@ -1183,10 +1096,6 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
             ensure(!data.is_empty(), cmd, "data")?;
             Command::ModuleData { module_num, data }
         }
-        id::GET_ID => Command::GetId,
-        id::SET_ID => Command::SetId { id: r.u8()? },
-        id::FEATURE_CHECK => Command::FeatureCheck { msg_type: r.u8()? },
-        id::BOOTLOADER_RESET => Command::BootloaderReset,
         _ => return Err(Error::UnknownId { id: cmd }),
     })
 }

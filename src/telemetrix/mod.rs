@@ -222,6 +222,7 @@ mod report;
 #[cfg(feature = "serde")]
 mod schema;
 mod sensor;
+mod table;
 mod wire;
 
 pub use buf::{CommandBuf, Message, MessageBuf, ReportBuf};

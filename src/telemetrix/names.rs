@@ -182,52 +182,22 @@ impl ModifyReporting {
     }
 }
 
-impl Command<'_> {
-    /// Every command `type`, in id order (ids 0..=38). The command with id
-    /// 37 is `feature_request` (the report is `feature_check`), so that
-    /// every name names one direction.
-    pub const NAMES: &'static [&'static str] = &[
-        "serial_loop_back",
-        "set_pin_mode",
-        "digital_write",
-        "pwm_write",
-        "modify_reporting",
-        "get_firmware_version",
-        "get_pico_unique_id",
-        "servo_attach",
-        "servo_write",
-        "servo_detach",
-        "i2c_begin",
-        "i2c_read",
-        "i2c_write",
-        "sonar_new",
-        "dht_new",
-        "stop_all_reports",
-        "enable_all_reports",
-        "reset_data",
-        "reset_board",
-        "initialize_neo_pixels",
-        "show_neo_pixels",
-        "set_neo_pixel",
-        "clear_all_neo_pixels",
-        "fill_neo_pixels",
-        "spi_init",
-        "spi_write_blocking",
-        "spi_read_blocking",
-        "spi_set_format",
-        "spi_cs_control",
-        "set_scan_delay",
-        "encoder_new",
-        "sensor_new",
-        "ping",
-        "module_new",
-        "module_data",
-        "get_id",
-        "set_id",
-        "feature_request",
-        "bootloader_reset",
-    ];
+/// The command names, from the command table.
+macro_rules! command_names {
+    ($($n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
+        $codec:ident $($p:ident { $($body:tt)* })?;)*) => {
+        impl Command<'_> {
+            /// Every command `type`, in id order (ids 0..=38). The command with id
+            /// 37 is `feature_request` (the report is `feature_check`), so that
+            /// every name names one direction.
+            pub const NAMES: &'static [&'static str] = &[$($name),*];
+        }
+    };
+}
 
+super::table::command_table!(command_names);
+
+impl Command<'_> {
     /// This command's `type`.
     pub const fn name(&self) -> &'static str {
         Self::NAMES[self.id() as usize]
