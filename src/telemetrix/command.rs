@@ -57,13 +57,6 @@ macro_rules! command_codec {
                 }
             }
         }
-
-        fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>, Error> {
-            Ok(match r.id() {
-                $($n => parse_row!(dialect, r, $codec $($p { $($f : $kind $(($($arg)*))? $key),* })?),)*
-                _ => return Err(Error::UnknownId { id: r.id() }),
-            })
-        }
     };
 }
 
@@ -108,43 +101,6 @@ macro_rules! write_field {
     ($w:ident, $f:ident, $kind:ident) => {
         $w.u8($f)
     };
-}
-
-/// Parse a row's payload.
-macro_rules! parse_row {
-    ($dialect:ident, $r:ident, custom) => {
-        parse_custom($dialect, $r)?
-    };
-    ($dialect:ident, $r:ident, plain $p:ident { $($f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* }) => {
-        Command::$p { $($f: read_field!($r, $f, $key, $kind $(($($arg)*))?),)* }
-    };
-}
-
-/// Read and check one field of a `plain` row.
-macro_rules! read_field {
-    ($r:ident, $f:ident, $key:literal, u8) => {
-        $r.u8()?
-    };
-    ($r:ident, $f:ident, $key:literal, u16) => {
-        $r.u16()?
-    };
-    ($r:ident, $f:ident, $key:literal, pin) => {
-        $r.pin($key)?
-    };
-    ($r:ident, $f:ident, $key:literal, flag) => {
-        $r.flag($key)?
-    };
-    ($r:ident, $f:ident, $key:literal, level) => {
-        $r.flag($key)?
-    };
-    ($r:ident, $f:ident, $key:literal, rgb) => {
-        rgb($r)?
-    };
-    ($r:ident, $f:ident, $key:literal, range($lo:literal, $hi:literal)) => {{
-        let v = $r.u8()?;
-        ensure(($lo..=$hi).contains(&v), $r.id(), stringify!($f))?;
-        v
-    }};
 }
 
 super::table::command_table!(command_codec);
@@ -876,10 +832,13 @@ fn counted<'a>(r: &mut Reader<'a>, field: &'static str, min: u8) -> Result<&'a [
     r.take(usize::from(n))
 }
 
-/// Parse the payload of a `custom` row of the command table.
-fn parse_custom<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>, Error> {
+/// Parse a command's payload. Written out rather than from the command
+/// table: one `match` with every error path inline is the smallest code
+/// for the Pico (see the module docs of `table`).
+fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>, Error> {
     let cmd = r.id();
     Ok(match cmd {
+        id::SERIAL_LOOP_BACK => Command::LoopBack { byte: r.u8()? },
         id::SET_PIN_MODE => {
             let pin = r.u8()?;
             let mode = match r.u8()? {
@@ -963,6 +922,8 @@ fn parse_custom<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>,
             };
             Command::ModifyReporting(m)
         }
+        id::GET_FIRMWARE_VERSION => Command::GetFirmwareVersion,
+        id::GET_PICO_UNIQUE_ID => Command::GetUniqueId,
         id::SERVO_ATTACH => {
             let pin = r.pin("pin")?;
             let pulse_range = if r.remaining() > 0 {
@@ -972,6 +933,16 @@ fn parse_custom<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>,
             };
             Command::ServoAttach { pin, pulse_range }
         }
+        id::SERVO_WRITE => Command::ServoWrite {
+            pin: r.pin("pin")?,
+            pulse_us: r.u16()?,
+        },
+        id::SERVO_DETACH => Command::ServoDetach { pin: r.pin("pin")? },
+        id::I2C_BEGIN => Command::I2cBegin {
+            port: port(r)?,
+            sda: r.pin("sda")?,
+            scl: r.pin("scl")?,
+        },
         id::I2C_READ if dialect.is_mirte() => {
             let (port, addr, msg_id, reg) = (port(r)?, i2c_addr(r)?, r.u8()?, r.u8()?);
             let len = r.u8()?;
@@ -1028,12 +999,45 @@ fn parse_custom<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>,
                 data: r.take(usize::from(n))?,
             }
         }
+        id::SONAR_NEW => Command::SonarNew {
+            trig: r.pin("trig")?,
+            echo: r.pin("echo")?,
+        },
+        id::DHT_NEW => Command::DhtNew { pin: r.pin("pin")? },
+        id::STOP_ALL_REPORTS => Command::StopAllReports,
+        id::ENABLE_ALL_REPORTS => Command::EnableAllReports,
+        id::RESET_DATA => Command::ResetData,
+        id::RESET_BOARD => Command::ResetBoard,
+        id::INITIALIZE_NEO_PIXELS => {
+            let pin = r.pin("pin")?;
+            let count = r.u8()?;
+            ensure(count <= 100, cmd, "count")?;
+            Command::InitNeoPixels {
+                pin,
+                count,
+                rgb: rgb(r)?,
+            }
+        }
+        id::SHOW_NEO_PIXELS => Command::ShowNeoPixels,
+        id::SET_NEO_PIXEL => {
+            let index = r.u8()?;
+            ensure(index < 100, cmd, "index")?;
+            Command::SetNeoPixel {
+                index,
+                rgb: rgb(r)?,
+                auto_show: r.flag("auto_show")?,
+            }
+        }
         id::CLEAR_ALL_NEO_PIXELS => Command::ClearAllNeoPixels {
             auto_show: if r.remaining() > 0 {
                 Some(r.flag("auto_show")?)
             } else {
                 None
             },
+        },
+        id::FILL_NEO_PIXELS => Command::FillNeoPixels {
+            rgb: rgb(r)?,
+            auto_show: r.flag("auto_show")?,
         },
         id::SPI_INIT => {
             let port = port(r)?;
@@ -1055,6 +1059,32 @@ fn parse_custom<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>,
             port: port(r)?,
             data: counted(r, "len", 0)?,
         },
+        id::SPI_READ_BLOCKING => {
+            let port = port(r)?;
+            let len = r.u8()?;
+            ensure(len <= 60, cmd, "len")?;
+            Command::SpiRead {
+                port,
+                len,
+                tx_fill: r.u8()?,
+            }
+        }
+        id::SPI_SET_FORMAT => {
+            let port = port(r)?;
+            let data_bits = r.u8()?;
+            ensure((4..=16).contains(&data_bits), cmd, "data_bits")?;
+            Command::SpiSetFormat {
+                port,
+                data_bits,
+                cpol: r.flag("cpol")?,
+                cpha: r.flag("cpha")?,
+            }
+        }
+        id::SPI_CS_CONTROL => Command::SpiCsControl {
+            cs_pin: r.pin("cs_pin")?,
+            high: r.flag("level")?,
+        },
+        id::SET_SCAN_DELAY => Command::SetScanDelay { delay_ms: r.u8()? },
         id::ENCODER_NEW => {
             // The firmware sets up a quadrature encoder for any type but 1;
             // type 3 is accepted as that, and flagged as a quirk.
@@ -1089,6 +1119,7 @@ fn parse_custom<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>,
             }
         }
         id::SENSOR_NEW => Command::SensorNew(SensorNew::parse(r, dialect)?),
+        id::PING => Command::Ping { counter: r.u8()? },
         id::MODULE_NEW => Command::ModuleNew(ModuleNew::parse(r)?),
         id::MODULE_DATA => {
             let module_num = r.u8()?;
@@ -1096,6 +1127,10 @@ fn parse_custom<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>,
             ensure(!data.is_empty(), cmd, "data")?;
             Command::ModuleData { module_num, data }
         }
+        id::GET_ID => Command::GetId,
+        id::SET_ID => Command::SetId { id: r.u8()? },
+        id::FEATURE_CHECK => Command::FeatureCheck { msg_type: r.u8()? },
+        id::BOOTLOADER_RESET => Command::BootloaderReset,
         _ => return Err(Error::UnknownId { id: cmd }),
     })
 }
