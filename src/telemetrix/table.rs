@@ -31,10 +31,13 @@
 //! The wire layouts stay checked against the protocol spec by the tests
 //! (golden vectors in `tests/telemetrix.rs`), not by the table.
 
-/// Hand the command rows to `$callback!`.
+/// Hand the command rows to `$callback!`, after `$extra` (in brackets) when
+/// given: a consumer that expands in expression position takes its
+/// call-site names and hand-written arms there.
 macro_rules! command_table {
-    ($callback:ident) => {
+    ($callback:ident $(, $($extra:tt)+)?) => {
         $callback! {
+            $([$($extra)+])?
             0 SERIAL_LOOP_BACK "serial_loop_back" [LoopBack] in [Mirte13, Mirte12, Upstream11]
                 len (2, 2) plain LoopBack { byte: u8 "byte" };
             1 SET_PIN_MODE "set_pin_mode" [SetPinMode] in [Mirte13, Mirte12, Upstream11]
