@@ -19,8 +19,8 @@ use command_id as id;
 /// `LEN` tables, `Command::id`, and the payloads of the `plain` rows (the
 /// `custom` ones are [`Command::write_custom`] and [`parse_custom`]).
 macro_rules! command_codec {
-    ($($n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
-        $codec:ident $($p:ident { $($f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* })?;)*) => {
+    ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
         /// Whether `dialect` defines command `id` (and robowire covers it there).
         pub(crate) const fn command_known(dialect: Dialect, id: u8) -> bool {
             match id {
@@ -52,7 +52,7 @@ macro_rules! command_codec {
             fn write_payload(&self, w: &mut Writer<'_>) {
                 match *self {
                     $($(Command::$v { .. })|+ => {
-                        write_row!(self, w, $codec $($p { $($f : $kind $(($($arg)*))?),* })?)
+                        write_row!(self, w, $codec $($p)? { $($body)* })
                     })*
                 }
             }
@@ -72,11 +72,11 @@ macro_rules! len_range {
 
 /// Write a row's payload.
 macro_rules! write_row {
-    ($command:ident, $w:ident, custom) => {
+    ($command:ident, $w:ident, custom { $($decl:tt)* }) => {
         $command.write_custom($w)
     };
     ($command:ident, $w:ident, plain $p:ident {}) => {{}};
-    ($command:ident, $w:ident, plain $p:ident { $($f:ident : $kind:ident $(($($args:tt)*))?),* }) => {
+    ($command:ident, $w:ident, plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
         if let Command::$p { $($f),* } = *$command {
             $(write_field!($w, $f, $kind);)*
         }
@@ -112,13 +112,13 @@ macro_rules! parse_match {
         parse_match!(@rows ($dialect, $r, $cmd) [$($custom)*] [] $($rows)*)
     };
     (@rows $names:tt $custom:tt [$($arms:tt)*]
-        $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
-        custom; $($rest:tt)*) => {
+        $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
+        len $lens:tt custom { $($decl:tt)* }; $($rest:tt)*) => {
         parse_match!(@rows $names $custom [$($arms)*] $($rest)*)
     };
     (@rows ($dialect:ident, $r:ident, $cmd:ident) $custom:tt [$($arms:tt)*]
-        $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
-        plain $p:ident { $($f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* };
+        $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
+        len $lens:tt plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? };
         $($rest:tt)*) => {
         parse_match!(@rows ($dialect, $r, $cmd) $custom [
             $($arms)*
@@ -275,283 +275,75 @@ pub struct Pulls {
     pub down: bool,
 }
 
-/// A command, host → Pico. Variable byte fields (I2C and SPI data, chip
-/// selects, MODULE_NEW bus ids, MODULE_DATA) borrow from the frame they were
-/// parsed from or from the caller; [`CommandBuf`](super::CommandBuf) is the
-/// owned form.
-///
-/// Every variant is encoded with its full payload (the firmware never clears
-/// its command buffer); the encoder refuses values the firmware would
-/// mishandle (pins ≥ 30, counts above the spec §4 maxima, ids the dialect does
-/// not define).
-///
-/// With the `serde` feature it serializes in the JSON-lines schema of the
-/// `robowire` tool (`{"type":"ping","counter":7}`); deserialize a
-/// [`CommandBuf`](super::CommandBuf), which owns its bytes.
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Command<'a> {
-    /// 0 SERIAL_LOOP_BACK: the Pico echoes `byte` in report 0.
-    LoopBack {
-        /// The byte to echo.
-        byte: u8,
-    },
-    /// 1 SET_PIN_MODE.
-    SetPinMode {
-        /// GPIO number (< 30), or the analog pin for [`PinMode::AnalogInput`].
-        pin: u8,
-        /// Mode and tail.
-        mode: PinMode,
-    },
-    /// 2 DIGITAL_WRITE.
-    DigitalWrite {
-        /// GPIO number (< 30).
-        pin: u8,
-        /// Level, `true` for high: `1` on the wire, in JSON and in `Display`
-        /// (see [levels and flags](super#levels-and-flags)).
-        value: bool,
-    },
-    /// 3 PWM_WRITE (k pins at once in mirte 1.3).
-    PwmWrite(PwmPins),
-    /// 4 MODIFY_REPORTING.
-    ModifyReporting(ModifyReporting),
-    /// 5 GET_FIRMWARE_VERSION: answered by report 5.
-    GetFirmwareVersion,
-    /// 6 GET_PICO_UNIQUE_ID: answered by report 6.
-    GetUniqueId,
-    /// 7 SERVO_ATTACH (sets PWM mode).
-    ServoAttach {
-        /// GPIO number (< 30).
-        pin: u8,
-        /// The ignored `u16 min_us, u16 max_us` that some hosts append.
-        pulse_range: Option<(u16, u16)>,
-    },
-    /// 8 SERVO_WRITE.
-    ServoWrite {
-        /// GPIO number (< 30).
-        pin: u8,
-        /// Pulse width in µs.
-        pulse_us: u16,
-    },
-    /// 9 SERVO_DETACH (a no-op in the firmware).
-    ServoDetach {
-        /// GPIO number (< 30).
-        pin: u8,
-    },
-    /// 10 I2C_BEGIN. `port == sda == scl` selects the port's default pins.
-    I2cBegin {
-        /// 0 or 1.
-        port: u8,
-        /// SDA GPIO (< 30).
-        sda: u8,
-        /// SCL GPIO (< 30).
-        scl: u8,
-    },
-    /// 11 I2C_READ, mirte layout: answered by report 10 or 9, or not at all
-    /// when the register write fails.
-    I2cRead {
-        /// 0 or 1.
-        port: u8,
-        /// 7-bit address.
-        addr: u8,
-        /// Echoed in the reply.
-        msg_id: u8,
-        /// Register written before the read.
-        reg: u8,
-        /// Bytes to read, 1..=57.
-        len: u8,
-        /// 0 (stop), 1 (no stop), or 254 (skip the register write, no stop).
-        no_stop: u8,
-    },
-    /// 11 I2C_READ, upstream layout (no `msg_id`).
-    I2cReadUpstream {
-        /// 0 or 1.
-        port: u8,
-        /// 7-bit address.
-        addr: u8,
-        /// Register written before the read.
-        reg: u8,
-        /// Bytes to read, 1..=57.
-        len: u8,
-        /// 0 or 1.
-        no_stop: u8,
-    },
-    /// 12 I2C_WRITE, mirte layout: answered by report 8.
-    I2cWrite {
-        /// 0 or 1.
-        port: u8,
-        /// 7-bit address.
-        addr: u8,
-        /// Echoed in the reply.
-        msg_id: u8,
-        /// 0 or 1.
-        no_stop: u8,
-        /// 1..=24 bytes.
-        data: &'a [u8],
-    },
-    /// 12 I2C_WRITE, upstream layout (no `msg_id`).
-    I2cWriteUpstream {
-        /// 0 or 1.
-        port: u8,
-        /// 7-bit address.
-        addr: u8,
-        /// 0 or 1.
-        no_stop: u8,
-        /// 1..=25 bytes.
-        data: &'a [u8],
-    },
-    /// 13 SONAR_NEW (`trig == echo`: single-pin sonar). At most 4 are used.
-    SonarNew {
-        /// Trigger GPIO (< 30).
-        trig: u8,
-        /// Echo GPIO (< 30).
-        echo: u8,
-    },
-    /// 14 DHT_NEW. At most 2 are used.
-    DhtNew {
-        /// GPIO number (< 30).
-        pin: u8,
-    },
-    /// 15 STOP_ALL_REPORTS.
-    StopAllReports,
-    /// 16 ENABLE_ALL_REPORTS.
-    EnableAllReports,
-    /// 17 RESET_DATA (a no-op).
-    ResetData,
-    /// 18 RESET_BOARD.
-    ResetBoard,
-    /// 19 INITIALIZE_NEO_PIXELS: fills and shows.
-    InitNeoPixels {
-        /// GPIO number (< 30).
-        pin: u8,
-        /// Number of pixels, ≤ 100.
-        count: u8,
-        /// Fill colour.
-        rgb: Rgb,
-    },
-    /// 20 SHOW_NEO_PIXELS.
-    ShowNeoPixels,
-    /// 21 SET_NEO_PIXEL.
-    SetNeoPixel {
-        /// Pixel index (< 100).
-        index: u8,
-        /// Colour.
-        rgb: Rgb,
-        /// Show at once.
-        auto_show: bool,
-    },
-    /// 22 CLEAR_ALL_NEO_PIXELS (always shows).
-    ClearAllNeoPixels {
-        /// The ignored `auto_show` byte some hosts append.
-        auto_show: Option<bool>,
-    },
-    /// 23 FILL_NEO_PIXELS.
-    FillNeoPixels {
-        /// Colour.
-        rgb: Rgb,
-        /// Show at once.
-        auto_show: bool,
-    },
-    /// 24 SPI_INIT.
-    SpiInit {
-        /// 0 or 1.
-        port: u8,
-        /// MISO or MOSI GPIO (< 30).
-        pin_a: u8,
-        /// MOSI or MISO GPIO (< 30).
-        pin_b: u8,
-        /// Clock GPIO (< 30).
-        clk: u8,
-        /// Clock frequency in Hz (≥ 1).
-        freq_hz: u32,
-        /// Chip-select GPIOs (each < 30), at most 20.
-        cs_pins: &'a [u8],
-    },
-    /// 25 SPI_WRITE_BLOCKING.
-    SpiWrite {
-        /// 0 or 1.
-        port: u8,
-        /// At most 27 bytes.
-        data: &'a [u8],
-    },
-    /// 26 SPI_READ_BLOCKING: answered by report 13.
-    SpiRead {
-        /// 0 or 1.
-        port: u8,
-        /// Bytes to read, ≤ 60.
-        len: u8,
-        /// Byte clocked out while reading.
-        tx_fill: u8,
-    },
-    /// 27 SPI_SET_FORMAT.
-    SpiSetFormat {
-        /// 0 or 1.
-        port: u8,
-        /// 4..=16.
-        data_bits: u8,
-        /// Clock polarity.
-        cpol: bool,
-        /// Clock phase.
-        cpha: bool,
-    },
-    /// 28 SPI_CS_CONTROL.
-    SpiCsControl {
-        /// GPIO number (< 30).
-        cs_pin: u8,
-        /// Level, `true` for high (`level` `0`/`1` in JSON and `Display`:
-        /// [levels and flags](super#levels-and-flags)).
-        high: bool,
-    },
-    /// 29 SET_SCAN_DELAY (mirte only).
-    SetScanDelay {
-        /// Scan period in ms.
-        delay_ms: u8,
-    },
-    /// 30 ENCODER_NEW (mirte only). At most 4 are used.
-    EncoderNew {
-        /// Single or quadrature.
-        kind: EncoderKind,
-        /// GPIO A (< 30).
-        pin_a: u8,
-        /// GPIO B (< 30); 0 for [`EncoderKind::Single`].
-        pin_b: u8,
-        /// Pull resistors: present in mirte 1.3, whose frame carries the
-        /// byte; `None` in mirte 1.2, whose frame does not.
-        pulls: Option<Pulls>,
-    },
-    /// 31 SENSOR_NEW (mirte 1.3, and mirte 1.2's own layout
-    /// [`SensorNew::AddMirte12`]).
-    SensorNew(SensorNew),
-    /// 32 PING (mirte only): answered by report 32.
-    Ping {
-        /// Echoed in the reply.
-        counter: u8,
-    },
-    /// 33 MODULE_NEW (mirte 1.3).
-    ModuleNew(ModuleNew<'a>),
-    /// 34 MODULE_DATA (mirte 1.3): build typed data with
-    /// [`Command::module_data`], read it with the module's `parse`.
-    ModuleData {
-        /// Module number (modules are numbered 0, 1, 2, … in creation order).
-        module_num: u8,
-        /// 1..=28 bytes for the module.
-        data: &'a [u8],
-    },
-    /// 35 GET_ID (mirte 1.3): answered by report 35.
-    GetId,
-    /// 36 SET_ID (mirte 1.3): answered by report 36.
-    SetId {
-        /// The id to save.
-        id: u8,
-    },
-    /// 37 FEATURE_CHECK (mirte 1.3): answered by report 37.
-    FeatureCheck {
-        /// The command id asked about.
-        msg_type: u8,
-    },
-    /// 38 BOOTLOADER_RESET (mirte 1.3).
-    BootloaderReset,
+/// The `Command` enum, from the command table: a `plain` row's variant is
+/// built from its fields (a unit variant when it has none), a `custom` row
+/// gives its variants as written.
+macro_rules! command_enum {
+    (@rows [$($vars:tt)*]
+        $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
+        len $lens:tt plain $p:ident {}; $($rest:tt)*) => {
+        command_enum!(@rows [$($vars)* $(#[$vm])* $p,] $($rest)*);
+    };
+    (@rows [$($vars:tt)*]
+        $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
+        len $lens:tt plain $p:ident {
+            $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)?
+        }; $($rest:tt)*) => {
+        command_enum!(@rows [
+            $($vars)* $(#[$vm])* $p { $($(#[$fm])* $f: field_type!($kind),)* },
+        ] $($rest)*);
+    };
+    (@rows [$($vars:tt)*]
+        $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
+        len $lens:tt custom { $($decl:tt)* }; $($rest:tt)*) => {
+        command_enum!(@rows [$($vars)* $($decl)*] $($rest)*);
+    };
+    (@rows [$($vars:tt)*]) => {
+        /// A command, host → Pico. Variable byte fields (I2C and SPI data, chip
+        /// selects, MODULE_NEW bus ids, MODULE_DATA) borrow from the frame they were
+        /// parsed from or from the caller; [`CommandBuf`](super::CommandBuf) is the
+        /// owned form.
+        ///
+        /// Every variant is encoded with its full payload (the firmware never clears
+        /// its command buffer); the encoder refuses values the firmware would
+        /// mishandle (pins ≥ 30, counts above the spec §4 maxima, ids the dialect does
+        /// not define).
+        ///
+        /// With the `serde` feature it serializes in the JSON-lines schema of the
+        /// `robowire` tool (`{"type":"ping","counter":7}`); deserialize a
+        /// [`CommandBuf`](super::CommandBuf), which owns its bytes.
+        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum Command<'a> {
+            $($vars)*
+        }
+    };
+    ($($rows:tt)*) => {
+        command_enum!(@rows [] $($rows)*);
+    };
 }
+
+/// The Rust type of a `plain` row's field kind.
+macro_rules! field_type {
+    (u16) => {
+        u16
+    };
+    (flag) => {
+        bool
+    };
+    (level) => {
+        bool
+    };
+    (rgb) => {
+        Rgb
+    };
+    // u8, pin, range
+    ($kind:ident) => {
+        u8
+    };
+}
+
+super::table::command_table!(command_enum);
 
 impl<'a> Command<'a> {
     /// Frame length of this command in `dialect`.

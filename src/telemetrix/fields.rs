@@ -256,13 +256,13 @@ impl Visit for MessageBuf {
 /// A command's payload fields, from the command table: the `plain` rows'
 /// fields by their kind, the `custom` rows by [`CommandView::visit_custom`].
 macro_rules! command_fields {
-    ($($n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
-        $codec:ident $($p:ident { $($f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* })?;)*) => {
+    ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
         impl CommandView<'_, '_> {
             fn payload(&self, w: &mut W<'_>) {
                 match *self.command {
                     $($(Command::$v { .. })|+ => {
-                        visit_row!(self, w, $codec $($p { $($f : $kind $key),* })?)
+                        visit_row!(self, w, $codec $($p)? { $($body)* })
                     })*
                 }
             }
@@ -272,11 +272,11 @@ macro_rules! command_fields {
 
 /// Visit a row's payload.
 macro_rules! visit_row {
-    ($view:ident, $w:ident, custom) => {
+    ($view:ident, $w:ident, custom { $($decl:tt)* }) => {
         $view.visit_custom($w)
     };
     ($view:ident, $w:ident, plain $p:ident {}) => {{}};
-    ($view:ident, $w:ident, plain $p:ident { $($f:ident : $kind:ident $key:literal),* }) => {
+    ($view:ident, $w:ident, plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
         if let Command::$p { $($f),* } = *$view.command {
             $(visit_field!($w, $f, $kind, $key);)*
         }

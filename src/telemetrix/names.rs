@@ -184,8 +184,8 @@ impl ModifyReporting {
 
 /// The command names, from the command table.
 macro_rules! command_names {
-    ($($n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
-        $codec:ident $($p:ident { $($body:tt)* })?;)*) => {
+    ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
         impl Command<'_> {
             /// Every command `type`, in id order (ids 0..=38). The command with id
             /// 37 is `feature_request` (the report is `feature_check`), so that

@@ -634,11 +634,11 @@ fn rgb(f: &mut Fields<'_>) -> Result<Rgb, String> {
 /// The members of a `plain` row's command, from the command table; `None`
 /// for a `custom` row's (read by [`read_command`]).
 macro_rules! command_reader {
-    ($($n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
-        $codec:ident $($p:ident { $($f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* })?;)*) => {
+    ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
         fn read_plain<'b>(kind: &str, f: &mut Fields<'_>) -> Result<Option<Command<'b>>, String> {
             Ok(Some(match kind {
-                $($name => read_row!(f, $codec $($p { $($f : $kind $(($($arg)*))? $key),* })?),)*
+                $($name => read_row!(f, $codec $($p)? { $($body)* }),)*
                 _ => return Ok(None),
             }))
         }
@@ -647,10 +647,10 @@ macro_rules! command_reader {
 
 /// Read a row's members.
 macro_rules! read_row {
-    ($fields:ident, custom) => {
+    ($fields:ident, custom { $($decl:tt)* }) => {
         return Ok(None)
     };
-    ($fields:ident, plain $p:ident { $($f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* }) => {
+    ($fields:ident, plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
         Command::$p { $($f: read_member!($fields, $key, $kind $(($($arg)*))?),)* }
     };
 }

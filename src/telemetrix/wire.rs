@@ -35,8 +35,8 @@ pub(crate) const fn analog_pin_ok(dialect: Dialect, pin: u8) -> bool {
 
 /// The id constants, from the command table.
 macro_rules! command_ids {
-    ($($n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
-        $codec:ident $($p:ident { $($body:tt)* })?;)*) => {
+    ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
         /// Command ids (host → Pico), mirte firmware 1.3 numbering (spec §4).
         pub mod command_id {
             $(
