@@ -85,6 +85,15 @@ macro_rules! write_row {
 
 /// Write one field of a `plain` row.
 macro_rules! write_field {
+    ($w:ident, $f:ident, counted) => {{
+        $w.u8($f.len() as u8);
+        $w.bytes($f);
+    }};
+    ($w:ident, $f:ident, trailing_flag) => {
+        if let Some(flag) = $f {
+            $w.flag(flag);
+        }
+    };
     ($w:ident, $f:ident, flag) => {
         $w.flag($f)
     };
@@ -135,6 +144,16 @@ macro_rules! parse_match {
 
 /// Read and check one field of a `plain` row.
 macro_rules! read_field {
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, counted($count:literal)) => {
+        counted($r, $count, 0)?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, trailing_flag) => {
+        if $r.remaining() > 0 {
+            Some($r.flag($key)?)
+        } else {
+            None
+        }
+    };
     ($r:ident, $cmd:ident, $f:ident, $key:literal, u8) => {
         $r.u8()?
     };
@@ -325,6 +344,8 @@ macro_rules! command_enum {
 
 /// The Rust type of a `plain` row's field kind.
 macro_rules! field_type {
+    (counted) => { &'a [u8] };
+    (trailing_flag) => { Option<bool> };
     (u16) => {
         u16
     };
@@ -579,8 +600,6 @@ impl<'a> Command<'a> {
                 w.bytes(&[*port, *addr, data.len() as u8, *no_stop]);
                 w.bytes(data);
             }
-            // Without the byte, nothing (the `_` arm).
-            Command::ClearAllNeoPixels { auto_show: Some(a) } => w.flag(*a),
             Command::SpiInit {
                 port,
                 pin_a,
@@ -593,10 +612,6 @@ impl<'a> Command<'a> {
                 w.u32(*freq_hz);
                 w.u8(cs_pins.len() as u8);
                 w.bytes(cs_pins);
-            }
-            Command::SpiWrite { port, data } => {
-                w.bytes(&[*port, data.len() as u8]);
-                w.bytes(data);
             }
             Command::EncoderNew {
                 kind,
@@ -835,13 +850,6 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
                     data: r.take(usize::from(n))?,
                 }
             }
-            id::CLEAR_ALL_NEO_PIXELS => Command::ClearAllNeoPixels {
-                auto_show: if r.remaining() > 0 {
-                    Some(r.flag("auto_show")?)
-                } else {
-                    None
-                },
-            },
             id::SPI_INIT => {
                 let port = port(r)?;
                 let (pin_a, pin_b, clk) = (r.pin("pin_a")?, r.pin("pin_b")?, r.pin("clk")?);
@@ -858,10 +866,6 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
                     cs_pins,
                 }
             }
-            id::SPI_WRITE_BLOCKING => Command::SpiWrite {
-                port: port(r)?,
-                data: counted(r, "len", 0)?,
-            },
             id::ENCODER_NEW => {
                 // The firmware sets up a quadrature encoder for any type but 1;
                 // type 3 is accepted as that, and flagged as a quirk.

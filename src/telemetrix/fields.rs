@@ -285,6 +285,14 @@ macro_rules! visit_row {
 
 /// Visit one field of a `plain` row.
 macro_rules! visit_field {
+    ($w:ident, $f:ident, counted, $key:literal) => {
+        $w.bytes($key, $f)
+    };
+    ($w:ident, $f:ident, trailing_flag, $key:literal) => {
+        if let Some(flag) = $f {
+            $w.flag($key, flag);
+        }
+    };
     ($w:ident, $f:ident, flag, $key:literal) => {
         $w.flag($key, $f)
     };
@@ -405,10 +413,6 @@ impl CommandView<'_, '_> {
                 w.u("no_stop", no_stop);
                 w.bytes("data", data);
             }
-            // Without the byte, nothing (the `_` arm).
-            Command::ClearAllNeoPixels {
-                auto_show: Some(auto_show),
-            } => w.flag("auto_show", auto_show),
             Command::SpiInit {
                 port,
                 pin_a,
@@ -423,10 +427,6 @@ impl CommandView<'_, '_> {
                 w.u("clk", clk);
                 w.u("freq_hz", freq_hz);
                 w.bytes("cs_pins", cs_pins);
-            }
-            Command::SpiWrite { port, data } => {
-                w.u("port", port);
-                w.bytes("data", data);
             }
             Command::EncoderNew {
                 kind,

@@ -631,51 +631,84 @@ fn rgb(f: &mut Fields<'_>) -> Result<Rgb, String> {
     })
 }
 
-/// The members of a `plain` row's command, from the command table; `None`
-/// for a `custom` row's (read by [`read_command`]).
+/// The members of a `plain` row's command, from the command table (a
+/// `custom` row's are read by [`read_command`]).
 macro_rules! command_reader {
     ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
         $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
-        fn read_plain<'b>(kind: &str, f: &mut Fields<'_>) -> Result<Option<Command<'b>>, String> {
-            Ok(Some(match kind {
-                $($name => read_row!(f, $codec $($p)? { $($body)* }),)*
-                _ => return Ok(None),
-            }))
+        /// Whether `kind` is a `plain` row's command.
+        fn is_plain(kind: &str) -> bool {
+            match kind {
+                $($name => row_is_plain!($codec),)*
+                _ => false,
+            }
+        }
+
+        /// The members of a `plain` row's command `kind`.
+        fn read_plain<'b>(
+            kind: &str,
+            f: &mut Fields<'_>,
+            buf: &'b mut Vec<u8>,
+        ) -> Result<Command<'b>, String> {
+            Ok(match kind {
+                $($name => read_row!(f, buf, $codec $($p)? { $($body)* }),)*
+                other => return Err(format!("unknown type `{other}`")),
+            })
         }
     };
 }
 
-/// Read a row's members.
-macro_rules! read_row {
-    ($fields:ident, custom { $($decl:tt)* }) => {
-        return Ok(None)
+/// Whether a row is `plain`.
+macro_rules! row_is_plain {
+    (plain) => {
+        true
     };
-    ($fields:ident, plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
-        Command::$p { $($f: read_member!($fields, $key, $kind $(($($arg)*))?),)* }
+    (custom) => {
+        false
+    };
+}
+
+/// Read a row's members (a `custom` row's are read by [`read_command`]).
+macro_rules! read_row {
+    ($fields:ident, $buf:ident, custom { $($decl:tt)* }) => {
+        return Err(String::from("a custom row is read by read_command"))
+    };
+    ($fields:ident, $buf:ident, plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
+        Command::$p { $($f: read_member!($fields, $buf, $key, $kind $(($($arg)*))?),)* }
     };
 }
 
 /// Read one member of a `plain` row.
 macro_rules! read_member {
-    ($fields:ident, $key:literal, u8) => {
+    ($fields:ident, $buf:ident, $key:literal, counted($count:literal)) => {
+        bytes_in($fields, $key, $buf)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, trailing_flag) => {
+        if $fields.has($key) {
+            Some(flag($fields, $key)?)
+        } else {
+            None
+        }
+    };
+    ($fields:ident, $buf:ident, $key:literal, u8) => {
         u8_($fields, $key)?
     };
-    ($fields:ident, $key:literal, u16) => {
+    ($fields:ident, $buf:ident, $key:literal, u16) => {
         u16_($fields, $key)?
     };
-    ($fields:ident, $key:literal, pin) => {
+    ($fields:ident, $buf:ident, $key:literal, pin) => {
         pin_($fields, $key)?
     };
-    ($fields:ident, $key:literal, flag) => {
+    ($fields:ident, $buf:ident, $key:literal, flag) => {
         flag($fields, $key)?
     };
-    ($fields:ident, $key:literal, level) => {
+    ($fields:ident, $buf:ident, $key:literal, level) => {
         level($fields, $key)?
     };
-    ($fields:ident, $key:literal, rgb) => {
+    ($fields:ident, $buf:ident, $key:literal, rgb) => {
         rgb($fields)?
     };
-    ($fields:ident, $key:literal, range($lo:literal, $hi:literal)) => {
+    ($fields:ident, $buf:ident, $key:literal, range($lo:literal, $hi:literal)) => {
         ranged($fields, $key, $lo, $hi)?
     };
 }
@@ -690,8 +723,8 @@ fn read_command<'b>(
     buf: &'b mut Vec<u8>,
     raw: &mut Raw,
 ) -> Result<Command<'b>, String> {
-    if let Some(command) = read_plain(kind, f)? {
-        return Ok(command);
+    if is_plain(kind) {
+        return read_plain(kind, f, buf);
     }
     let upstream = dialect == Dialect::Upstream11;
     Ok(match kind {
@@ -797,13 +830,6 @@ fn read_command<'b>(
             no_stop: u8_(f, "no_stop")?,
             data: bytes_in(f, "data", buf)?,
         },
-        "clear_all_neo_pixels" => Command::ClearAllNeoPixels {
-            auto_show: if f.has("auto_show") {
-                Some(flag(f, "auto_show")?)
-            } else {
-                None
-            },
-        },
         "spi_init" => Command::SpiInit {
             port: ranged(f, "port", 0, 1)?,
             pin_a: pin_(f, "pin_a")?,
@@ -811,10 +837,6 @@ fn read_command<'b>(
             clk: pin_(f, "clk")?,
             freq_hz: f.int("freq_hz", 1, i64::from(u32::MAX))? as u32,
             cs_pins: bytes_in(f, "cs_pins", buf)?,
-        },
-        "spi_write_blocking" => Command::SpiWrite {
-            port: ranged(f, "port", 0, 1)?,
-            data: bytes_in(f, "data", buf)?,
         },
         "encoder_new" => Command::EncoderNew {
             kind: if raw.is(Quirk::EncoderTypeNot1Or2) {

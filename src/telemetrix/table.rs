@@ -20,6 +20,11 @@
 //! | `flag`          | `bool` | one byte, `0` or `1`           | `true`/`false`  |
 //! | `level`         | `bool` | one byte, `0` or `1`           | `0`/`1`         |
 //! | `rgb`           | `Rgb`  | three bytes                    | `r`, `g`, `b`   |
+//! | `counted(name)` | `&[u8]`| a count byte (`name` in errors), then the bytes | array |
+//! | `trailing_flag` | `Option<bool>` | a last `0`/`1` byte, or nothing | `true`/`false`, or absent |
+//!
+//! A row has at most one `counted` field (the serde reader borrows one buffer
+//! for it), and a `trailing_flag` only last.
 //!
 //! The table is a `macro_rules!` macro that hands its rows to a callback
 //! macro: each consumer (the id constants in `wire`, the enum, parser and
@@ -229,13 +234,11 @@ macro_rules! command_table {
                     /// Show at once.
                     auto_show: flag "auto_show",
                 };
+            /// 22 CLEAR_ALL_NEO_PIXELS (always shows).
             22 CLEAR_ALL_NEO_PIXELS "clear_all_neo_pixels" [ClearAllNeoPixels] in [Mirte13, Mirte12, Upstream11] len (1, 2)
-                custom {
-                    /// 22 CLEAR_ALL_NEO_PIXELS (always shows).
-                    ClearAllNeoPixels {
-                        /// The ignored `auto_show` byte some hosts append.
-                        auto_show: Option<bool>,
-                    },
+                plain ClearAllNeoPixels {
+                    /// The ignored `auto_show` byte some hosts append.
+                    auto_show: trailing_flag "auto_show",
                 };
             /// 23 FILL_NEO_PIXELS.
             23 FILL_NEO_PIXELS "fill_neo_pixels" [FillNeoPixels] in [Mirte13, Mirte12, Upstream11] len (5, 5)
@@ -263,15 +266,13 @@ macro_rules! command_table {
                         cs_pins: &'a [u8],
                     },
                 };
+            /// 25 SPI_WRITE_BLOCKING.
             25 SPI_WRITE_BLOCKING "spi_write_blocking" [SpiWrite] in [Mirte13, Mirte12, Upstream11] len (3, 30)
-                custom {
-                    /// 25 SPI_WRITE_BLOCKING.
-                    SpiWrite {
-                        /// 0 or 1.
-                        port: u8,
-                        /// At most 27 bytes.
-                        data: &'a [u8],
-                    },
+                plain SpiWrite {
+                    /// 0 or 1.
+                    port: range(0, 1) "port",
+                    /// At most 27 bytes.
+                    data: counted("len") "data",
                 };
             /// 26 SPI_READ_BLOCKING: answered by report 13.
             26 SPI_READ_BLOCKING "spi_read_blocking" [SpiRead] in [Mirte13, Mirte12, Upstream11] len (4, 4)
