@@ -78,14 +78,26 @@ macro_rules! write_row {
     ($command:ident, $w:ident, plain $p:ident {}) => {{}};
     ($command:ident, $w:ident, plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
         if let Command::$p { $($f),* } = *$command {
-            $(write_field!($w, $f, $kind);)*
+            $(write_field!($w, $f, $kind $(($($arg)*))?);)*
         }
     };
 }
 
 /// Write one field of a `plain` row.
 macro_rules! write_field {
-    ($w:ident, $f:ident, counted) => {{
+    ($w:ident, $f:ident, counted_pins $args:tt) => {
+        write_field!($w, $f, counted)
+    };
+    ($w:ident, $f:ident, nonzero_u32) => {
+        $w.u32($f)
+    };
+    ($w:ident, $f:ident, trailing_u16_pair $args:tt) => {
+        if let Some((a, b)) = $f {
+            $w.u16(a);
+            $w.u16(b);
+        }
+    };
+    ($w:ident, $f:ident, counted $($args:tt)?) => {{
         $w.u8($f.len() as u8);
         $w.bytes($f);
     }};
@@ -107,7 +119,7 @@ macro_rules! write_field {
         $w.bytes(&[$f.r, $f.g, $f.b])
     };
     // u8, pin, range
-    ($w:ident, $f:ident, $kind:ident) => {
+    ($w:ident, $f:ident, $kind:ident $($args:tt)?) => {
         $w.u8($f)
     };
 }
@@ -144,6 +156,23 @@ macro_rules! parse_match {
 
 /// Read and check one field of a `plain` row.
 macro_rules! read_field {
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, counted_pins($count:literal, $each:literal)) => {{
+        let pins = counted($r, $count, 0)?;
+        ensure(pins.iter().all(|&p| p < PIN_COUNT), $cmd, $each)?;
+        pins
+    }};
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, nonzero_u32) => {{
+        let v = $r.u32()?;
+        ensure(v >= 1, $cmd, $key)?;
+        v
+    }};
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, trailing_u16_pair $args:tt) => {
+        if $r.remaining() > 0 {
+            Some(($r.u16()?, $r.u16()?))
+        } else {
+            None
+        }
+    };
     ($r:ident, $cmd:ident, $f:ident, $key:literal, counted($count:literal)) => {
         counted($r, $count, 0)?
     };
@@ -344,6 +373,9 @@ macro_rules! command_enum {
 
 /// The Rust type of a `plain` row's field kind.
 macro_rules! field_type {
+    (counted_pins) => { &'a [u8] };
+    (nonzero_u32) => { u32 };
+    (trailing_u16_pair) => { Option<(u16, u16)> };
     (counted) => { &'a [u8] };
     (trailing_flag) => { Option<bool> };
     (u16) => {
@@ -559,13 +591,6 @@ impl<'a> Command<'a> {
                 w.u8(kind);
                 w.u8(pin);
             }
-            Command::ServoAttach { pin, pulse_range } => {
-                w.u8(*pin);
-                if let Some((min, max)) = pulse_range {
-                    w.u16(*min);
-                    w.u16(*max);
-                }
-            }
             Command::I2cRead {
                 port,
                 addr,
@@ -599,19 +624,6 @@ impl<'a> Command<'a> {
             } => {
                 w.bytes(&[*port, *addr, data.len() as u8, *no_stop]);
                 w.bytes(data);
-            }
-            Command::SpiInit {
-                port,
-                pin_a,
-                pin_b,
-                clk,
-                freq_hz,
-                cs_pins,
-            } => {
-                w.bytes(&[*port, *pin_a, *pin_b, *clk]);
-                w.u32(*freq_hz);
-                w.u8(cs_pins.len() as u8);
-                w.bytes(cs_pins);
             }
             Command::EncoderNew {
                 kind,
@@ -785,15 +797,6 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
                 };
                 Command::ModifyReporting(m)
             }
-            id::SERVO_ATTACH => {
-                let pin = r.pin("pin")?;
-                let pulse_range = if r.remaining() > 0 {
-                    Some((r.u16()?, r.u16()?))
-                } else {
-                    None
-                };
-                Command::ServoAttach { pin, pulse_range }
-            }
             id::I2C_READ if dialect.is_mirte() => {
                 let (port, addr, msg_id, reg) = (port(r)?, i2c_addr(r)?, r.u8()?, r.u8()?);
                 let len = r.u8()?;
@@ -848,22 +851,6 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>
                     addr,
                     no_stop,
                     data: r.take(usize::from(n))?,
-                }
-            }
-            id::SPI_INIT => {
-                let port = port(r)?;
-                let (pin_a, pin_b, clk) = (r.pin("pin_a")?, r.pin("pin_b")?, r.pin("clk")?);
-                let freq_hz = r.u32()?;
-                ensure(freq_hz >= 1, cmd, "freq_hz")?;
-                let cs_pins = counted(r, "cs count", 0)?;
-                ensure(cs_pins.iter().all(|&p| p < PIN_COUNT), cmd, "cs_pin")?;
-                Command::SpiInit {
-                    port,
-                    pin_a,
-                    pin_b,
-                    clk,
-                    freq_hz,
-                    cs_pins,
                 }
             }
             id::ENCODER_NEW => {

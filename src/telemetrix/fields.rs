@@ -278,32 +278,41 @@ macro_rules! visit_row {
     ($view:ident, $w:ident, plain $p:ident {}) => {{}};
     ($view:ident, $w:ident, plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
         if let Command::$p { $($f),* } = *$view.command {
-            $(visit_field!($w, $f, $kind, $key);)*
+            $(visit_field!($w, $f, $key, $kind $(($($arg)*))?);)*
         }
     };
 }
 
 /// Visit one field of a `plain` row.
 macro_rules! visit_field {
-    ($w:ident, $f:ident, counted, $key:literal) => {
+    ($w:ident, $f:ident, $key:literal, counted_pins $args:tt) => {
         $w.bytes($key, $f)
     };
-    ($w:ident, $f:ident, trailing_flag, $key:literal) => {
+    ($w:ident, $f:ident, $key:literal, trailing_u16_pair($a:literal, $b:literal)) => {
+        if let Some((a, b)) = $f {
+            $w.u($a, a);
+            $w.u($b, b);
+        }
+    };
+    ($w:ident, $f:ident, $key:literal, counted $args:tt) => {
+        $w.bytes($key, $f)
+    };
+    ($w:ident, $f:ident, $key:literal, trailing_flag) => {
         if let Some(flag) = $f {
             $w.flag($key, flag);
         }
     };
-    ($w:ident, $f:ident, flag, $key:literal) => {
+    ($w:ident, $f:ident, $key:literal, flag) => {
         $w.flag($key, $f)
     };
-    ($w:ident, $f:ident, level, $key:literal) => {
+    ($w:ident, $f:ident, $key:literal, level) => {
         $w.level($key, $f)
     };
-    ($w:ident, $f:ident, rgb, $key:literal) => {
+    ($w:ident, $f:ident, $key:literal, rgb) => {
         rgb($w, $f)
     };
     // u8, u16, pin, range
-    ($w:ident, $f:ident, $kind:ident, $key:literal) => {
+    ($w:ident, $f:ident, $key:literal, $kind:ident $($args:tt)?) => {
         $w.u($key, $f)
     };
 }
@@ -352,13 +361,6 @@ impl CommandView<'_, '_> {
                     | ModifyReporting::EnableDigital { pin }
                     | ModifyReporting::DisableAnalog { pin }
                     | ModifyReporting::DisableDigital { pin } => w.u("pin", pin),
-                }
-            }
-            Command::ServoAttach { pin, pulse_range } => {
-                w.u("pin", pin);
-                if let Some((min_us, max_us)) = pulse_range {
-                    w.u("min_us", min_us);
-                    w.u("max_us", max_us);
                 }
             }
             Command::I2cRead {
@@ -412,21 +414,6 @@ impl CommandView<'_, '_> {
                 w.u("addr", addr);
                 w.u("no_stop", no_stop);
                 w.bytes("data", data);
-            }
-            Command::SpiInit {
-                port,
-                pin_a,
-                pin_b,
-                clk,
-                freq_hz,
-                cs_pins,
-            } => {
-                w.u("port", port);
-                w.u("pin_a", pin_a);
-                w.u("pin_b", pin_b);
-                w.u("clk", clk);
-                w.u("freq_hz", freq_hz);
-                w.bytes("cs_pins", cs_pins);
             }
             Command::EncoderNew {
                 kind,

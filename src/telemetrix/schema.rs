@@ -680,6 +680,18 @@ macro_rules! read_row {
 
 /// Read one member of a `plain` row.
 macro_rules! read_member {
+    ($fields:ident, $buf:ident, $key:literal, counted_pins $args:tt) => {
+        bytes_in($fields, $key, $buf)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, nonzero_u32) => {
+        $fields.int($key, 1, i64::from(u32::MAX))? as u32
+    };
+    ($fields:ident, $buf:ident, $key:literal, trailing_u16_pair($a:literal, $b:literal)) => {
+        match ($fields.has($a), $fields.has($b)) {
+            (false, false) => None,
+            _ => Some((u16_($fields, $a)?, u16_($fields, $b)?)),
+        }
+    };
     ($fields:ident, $buf:ident, $key:literal, counted($count:literal)) => {
         bytes_in($fields, $key, $buf)?
     };
@@ -794,14 +806,6 @@ fn read_command<'b>(
                 },
             })
         }
-        "servo_attach" => {
-            let pin = pin_(f, "pin")?;
-            let pulse_range = match (f.has("min_us"), f.has("max_us")) {
-                (false, false) => None,
-                _ => Some((u16_(f, "min_us")?, u16_(f, "max_us")?)),
-            };
-            Command::ServoAttach { pin, pulse_range }
-        }
         "i2c_read" if upstream => Command::I2cReadUpstream {
             port: ranged(f, "port", 0, 1)?,
             addr: ranged(f, "addr", 0, 0x7f)?,
@@ -829,14 +833,6 @@ fn read_command<'b>(
             msg_id: u8_(f, "msg_id")?,
             no_stop: u8_(f, "no_stop")?,
             data: bytes_in(f, "data", buf)?,
-        },
-        "spi_init" => Command::SpiInit {
-            port: ranged(f, "port", 0, 1)?,
-            pin_a: pin_(f, "pin_a")?,
-            pin_b: pin_(f, "pin_b")?,
-            clk: pin_(f, "clk")?,
-            freq_hz: f.int("freq_hz", 1, i64::from(u32::MAX))? as u32,
-            cs_pins: bytes_in(f, "cs_pins", buf)?,
         },
         "encoder_new" => Command::EncoderNew {
             kind: if raw.is(Quirk::EncoderTypeNot1Or2) {

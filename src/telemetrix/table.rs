@@ -23,6 +23,10 @@
 //! | `counted(name)` | `&[u8]`| a count byte (`name` in errors), then the bytes | array |
 //! | `trailing_flag` | `Option<bool>` | a last `0`/`1` byte, or nothing | `true`/`false`, or absent |
 //!
+//! | `nonzero_u32`   | `u32`  | four bytes, big-endian, not 0  | number          |
+//! | `counted_pins(name, each)` | `&[u8]` | as `counted`, each byte a GPIO `< 30` (`each` in errors) | array |
+//! | `trailing_u16_pair(a, b)` | `Option<(u16, u16)>` | two last `u16`s, or nothing | `a` and `b`, or absent |
+//!
 //! A row has at most one `counted` field (the serde reader borrows one buffer
 //! for it), and a `trailing_flag` only last.
 //!
@@ -92,15 +96,13 @@ macro_rules! command_table {
             /// 6 GET_PICO_UNIQUE_ID: answered by report 6.
             6 GET_PICO_UNIQUE_ID "get_pico_unique_id" [GetUniqueId] in [Mirte13, Mirte12, Upstream11] len (1, 1)
                 plain GetUniqueId {};
+            /// 7 SERVO_ATTACH (sets PWM mode).
             7 SERVO_ATTACH "servo_attach" [ServoAttach] in [Mirte13, Mirte12, Upstream11] len (2, 6)
-                custom {
-                    /// 7 SERVO_ATTACH (sets PWM mode).
-                    ServoAttach {
-                        /// GPIO number (< 30).
-                        pin: u8,
-                        /// The ignored `u16 min_us, u16 max_us` that some hosts append.
-                        pulse_range: Option<(u16, u16)>,
-                    },
+                plain ServoAttach {
+                    /// GPIO number (< 30).
+                    pin: pin "pin",
+                    /// The ignored `u16 min_us, u16 max_us` that some hosts append.
+                    pulse_range: trailing_u16_pair("min_us", "max_us") "pulse_range",
                 };
             /// 8 SERVO_WRITE.
             8 SERVO_WRITE "servo_write" [ServoWrite] in [Mirte13, Mirte12, Upstream11] len (4, 4)
@@ -248,23 +250,21 @@ macro_rules! command_table {
                     /// Show at once.
                     auto_show: flag "auto_show",
                 };
+            /// 24 SPI_INIT.
             24 SPI_INIT "spi_init" [SpiInit] in [Mirte13, Mirte12, Upstream11] len (10, 30)
-                custom {
-                    /// 24 SPI_INIT.
-                    SpiInit {
-                        /// 0 or 1.
-                        port: u8,
-                        /// MISO or MOSI GPIO (< 30).
-                        pin_a: u8,
-                        /// MOSI or MISO GPIO (< 30).
-                        pin_b: u8,
-                        /// Clock GPIO (< 30).
-                        clk: u8,
-                        /// Clock frequency in Hz (≥ 1).
-                        freq_hz: u32,
-                        /// Chip-select GPIOs (each < 30), at most 20.
-                        cs_pins: &'a [u8],
-                    },
+                plain SpiInit {
+                    /// 0 or 1.
+                    port: range(0, 1) "port",
+                    /// MISO or MOSI GPIO (< 30).
+                    pin_a: pin "pin_a",
+                    /// MOSI or MISO GPIO (< 30).
+                    pin_b: pin "pin_b",
+                    /// Clock GPIO (< 30).
+                    clk: pin "clk",
+                    /// Clock frequency in Hz (≥ 1).
+                    freq_hz: nonzero_u32 "freq_hz",
+                    /// Chip-select GPIOs (each < 30), at most 20.
+                    cs_pins: counted_pins("cs count", "cs_pin") "cs_pins",
                 };
             /// 25 SPI_WRITE_BLOCKING.
             25 SPI_WRITE_BLOCKING "spi_write_blocking" [SpiWrite] in [Mirte13, Mirte12, Upstream11] len (3, 30)
