@@ -6,36 +6,13 @@ use super::fast;
 use super::module::{module_report_len_ok, ModuleReport};
 use super::quirk::report_quirk;
 use super::sensor::{SensorReading, SensorType};
-use super::wire::{analog_pin_ok, report_id, split_frame, Reader, Writer, MAX_REPORT_FRAME};
+use super::wire::{
+    analog_pin_ok, report_id, report_known, split_frame, Reader, Writer, MAX_REPORT_FRAME,
+};
 use crate::encode::check_room;
 use crate::{Encode, EncodeError};
 
 use report_id as id;
-
-/// Whether `dialect` defines report `id` (and robowire covers it there).
-pub(crate) const fn report_known(dialect: Dialect, id: u8) -> bool {
-    match id {
-        id::SERIAL_LOOP_BACK
-        | id::DIGITAL
-        | id::ANALOG
-        | id::FIRMWARE
-        | id::UNIQUE_ID
-        | id::I2C_WRITE
-        | id::I2C_READ
-        | id::SONAR
-        | id::DHT
-        | id::SPI => true,
-        id::I2C_READ_FAILED | id::ENCODER | id::PONG | id::DEBUG_PRINT => dialect.is_mirte(),
-        id::SENSOR => dialect.is_mirte(),
-        id::SENSOR_MAIN
-        | id::MODULE_MAIN
-        | id::MODULE
-        | id::GET_ID
-        | id::SET_ID
-        | id::FEATURE_CHECK => matches!(dialect, Dialect::Mirte13),
-        _ => false,
-    }
-}
 
 /// Largest I2C read (spec §4, command 11).
 const I2C_READ_MAX: u8 = 57;

@@ -379,3 +379,57 @@ macro_rules! command_table {
 }
 
 pub(crate) use command_table;
+
+/// Hand the report rows to `$callback!`: each report id (spec §5), its
+/// [`report_id`](super::report_id) constant and the dialects that define it.
+/// The reports' layouts are not in the table yet (`report.rs`, `fast.rs`).
+macro_rules! report_table {
+    ($callback:ident) => {
+        $callback! {
+            /// SERIAL_LOOP_BACK_REPORT.
+            0 SERIAL_LOOP_BACK in [Mirte13, Mirte12, Upstream11];
+            /// DIGITAL_REPORT.
+            2 DIGITAL in [Mirte13, Mirte12, Upstream11];
+            /// ANALOG_REPORT.
+            3 ANALOG in [Mirte13, Mirte12, Upstream11];
+            /// FIRMWARE_REPORT.
+            5 FIRMWARE in [Mirte13, Mirte12, Upstream11];
+            /// REPORT_PICO_UNIQUE_ID.
+            6 UNIQUE_ID in [Mirte13, Mirte12, Upstream11];
+            /// I2C_WRITE_REPORT (upstream: I2C_WRITE_FAILED).
+            8 I2C_WRITE in [Mirte13, Mirte12, Upstream11];
+            /// I2C_READ_FAILED.
+            9 I2C_READ_FAILED in [Mirte13, Mirte12];
+            /// I2C_READ_REPORT.
+            10 I2C_READ in [Mirte13, Mirte12, Upstream11];
+            /// SONAR_DISTANCE.
+            11 SONAR in [Mirte13, Mirte12, Upstream11];
+            /// DHT_REPORT.
+            12 DHT in [Mirte13, Mirte12, Upstream11];
+            /// SPI_REPORT.
+            13 SPI in [Mirte13, Mirte12, Upstream11];
+            /// ENCODER_REPORT.
+            14 ENCODER in [Mirte13, Mirte12];
+            /// SENSOR_REPORT.
+            20 SENSOR in [Mirte13, Mirte12];
+            /// SENSOR_MAIN_REPORT.
+            21 SENSOR_MAIN in [Mirte13];
+            /// PONG_REPORT.
+            32 PONG in [Mirte13, Mirte12];
+            /// MODULE_MAIN_REPORT.
+            33 MODULE_MAIN in [Mirte13];
+            /// MODULE_REPORT.
+            34 MODULE in [Mirte13];
+            /// GET_ID_REPORT.
+            35 GET_ID in [Mirte13];
+            /// SET_ID_REPORT.
+            36 SET_ID in [Mirte13];
+            /// FEATURE_CHECK.
+            37 FEATURE_CHECK in [Mirte13];
+            /// DEBUG_PRINT.
+            99 DEBUG_PRINT in [Mirte13, Mirte12];
+        }
+    };
+}
+
+pub(crate) use report_table;

@@ -60,51 +60,29 @@ macro_rules! command_ids {
 
 super::table::command_table!(command_ids);
 
-/// Report ids (Pico → host), mirte firmware 1.3 numbering (spec §5).
-pub mod report_id {
-    /// SERIAL_LOOP_BACK_REPORT.
-    pub const SERIAL_LOOP_BACK: u8 = 0;
-    /// DIGITAL_REPORT.
-    pub const DIGITAL: u8 = 2;
-    /// ANALOG_REPORT.
-    pub const ANALOG: u8 = 3;
-    /// FIRMWARE_REPORT.
-    pub const FIRMWARE: u8 = 5;
-    /// REPORT_PICO_UNIQUE_ID.
-    pub const UNIQUE_ID: u8 = 6;
-    /// I2C_WRITE_REPORT (upstream: I2C_WRITE_FAILED).
-    pub const I2C_WRITE: u8 = 8;
-    /// I2C_READ_FAILED.
-    pub const I2C_READ_FAILED: u8 = 9;
-    /// I2C_READ_REPORT.
-    pub const I2C_READ: u8 = 10;
-    /// SONAR_DISTANCE.
-    pub const SONAR: u8 = 11;
-    /// DHT_REPORT.
-    pub const DHT: u8 = 12;
-    /// SPI_REPORT.
-    pub const SPI: u8 = 13;
-    /// ENCODER_REPORT.
-    pub const ENCODER: u8 = 14;
-    /// SENSOR_REPORT.
-    pub const SENSOR: u8 = 20;
-    /// SENSOR_MAIN_REPORT.
-    pub const SENSOR_MAIN: u8 = 21;
-    /// PONG_REPORT.
-    pub const PONG: u8 = 32;
-    /// MODULE_MAIN_REPORT.
-    pub const MODULE_MAIN: u8 = 33;
-    /// MODULE_REPORT.
-    pub const MODULE: u8 = 34;
-    /// GET_ID_REPORT.
-    pub const GET_ID: u8 = 35;
-    /// SET_ID_REPORT.
-    pub const SET_ID: u8 = 36;
-    /// FEATURE_CHECK.
-    pub const FEATURE_CHECK: u8 = 37;
-    /// DEBUG_PRINT.
-    pub const DEBUG_PRINT: u8 = 99;
+/// The report id constants and the report dialect table, from the report
+/// table.
+macro_rules! report_ids {
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+];)*) => {
+        /// Report ids (Pico → host), mirte firmware 1.3 numbering (spec §5).
+        pub mod report_id {
+            $(
+                $(#[$m])*
+                pub const $id: u8 = $n;
+            )*
+        }
+
+        /// Whether `dialect` defines report `id` (and robowire covers it there).
+        pub(crate) const fn report_known(dialect: Dialect, id: u8) -> bool {
+            match id {
+                $($n => matches!(dialect, $(Dialect::$d)|+),)*
+                _ => false,
+            }
+        }
+    };
 }
+
+super::table::report_table!(report_ids);
 
 /// Split a frame into `LEN`, id and payload, checking that `LEN` matches.
 pub(crate) fn split_frame(frame: &[u8]) -> Result<(u8, u8, &[u8]), Error> {
