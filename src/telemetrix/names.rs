@@ -204,64 +204,27 @@ impl Command<'_> {
     }
 }
 
-impl Report<'_> {
-    /// Every report `type` (upstream's report 8 is `i2c_write_failed`);
-    /// `unknown_report` last, for a lenient framing's unknown ids.
-    pub const NAMES: &'static [&'static str] = &[
-        "serial_loop_back_report",
-        "digital_report",
-        "analog_report",
-        "firmware_version",
-        "pico_unique_id",
-        "i2c_write_report",
-        "i2c_write_failed",
-        "i2c_read_failed",
-        "i2c_read_report",
-        "sonar_distance",
-        "dht_report",
-        "spi_report",
-        "encoder_report",
-        "sensor_report",
-        "sensor_main_report",
-        "pong",
-        "module_main_report",
-        "module_report",
-        "get_id_report",
-        "set_id_report",
-        "feature_check",
-        "debug_print",
-        "unknown_report",
-    ];
+/// The report names, from the report table.
+macro_rules! report_names {
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
+        { $($name:literal [$($v:ident),+]),+ };)*) => {
+        impl Report<'_> {
+            /// Every report `type` (upstream's report 8 is `i2c_write_failed`);
+            /// `unknown_report` last, for a lenient framing's unknown ids.
+            pub const NAMES: &'static [&'static str] = &[$($($name,)+)* "unknown_report"];
 
-    /// This report's `type`.
-    pub const fn name(&self) -> &'static str {
-        Self::NAMES[match self {
-            Report::LoopBack { .. } => 0,
-            Report::Digital { .. } => 1,
-            Report::Analog { .. } => 2,
-            Report::FirmwareVersion { .. } => 3,
-            Report::UniqueId { .. } => 4,
-            Report::I2cWrite { .. } => 5,
-            Report::I2cWriteFailed { .. } => 6,
-            Report::I2cReadFailed { .. } => 7,
-            Report::I2cRead { .. } | Report::I2cReadUpstream { .. } => 8,
-            Report::Sonar(_) => 9,
-            Report::Dht { .. } => 10,
-            Report::Spi { .. } => 11,
-            Report::Encoder { .. } => 12,
-            Report::Sensor { .. } => 13,
-            Report::SensorSupported { .. } => 14,
-            Report::Pong { .. } => 15,
-            Report::ModuleSupported { .. } => 16,
-            Report::Module { .. } => 17,
-            Report::Id { .. } => 18,
-            Report::IdSet { .. } => 19,
-            Report::Feature { .. } => 20,
-            Report::Debug { .. } => 21,
-            Report::Unknown { .. } => 22,
-        }]
-    }
+            /// This report's `type`.
+            pub const fn name(&self) -> &'static str {
+                match self {
+                    $($($(Report::$v { .. })|+ => $name,)+)*
+                    Report::Unknown { .. } => "unknown_report",
+                }
+            }
+        }
+    };
 }
+
+super::table::report_table!(report_names);
 
 /// `a` then `b`, in a const context.
 const fn concat<const N: usize>(a: &[&'static str], b: &[&'static str]) -> [&'static str; N] {

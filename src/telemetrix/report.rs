@@ -433,33 +433,21 @@ pub enum Report<'a> {
     },
 }
 
+/// `Report::id`'s `match`, from the report table.
+macro_rules! report_id_match {
+    ([$report:ident] $($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
+        { $($name:literal [$($v:ident),+]),+ };)*) => {
+        match $report {
+            $($($(Report::$v { .. })|+)|+ => $n,)*
+            Report::Unknown { id, .. } => *id,
+        }
+    };
+}
+
 impl Report<'_> {
     /// The report id.
     pub const fn id(&self) -> u8 {
-        match self {
-            Report::LoopBack { .. } => id::SERIAL_LOOP_BACK,
-            Report::Digital { .. } => id::DIGITAL,
-            Report::Analog { .. } => id::ANALOG,
-            Report::FirmwareVersion { .. } => id::FIRMWARE,
-            Report::UniqueId { .. } => id::UNIQUE_ID,
-            Report::I2cWrite { .. } | Report::I2cWriteFailed { .. } => id::I2C_WRITE,
-            Report::I2cReadFailed { .. } => id::I2C_READ_FAILED,
-            Report::I2cRead { .. } | Report::I2cReadUpstream { .. } => id::I2C_READ,
-            Report::Sonar(_) => id::SONAR,
-            Report::Dht { .. } => id::DHT,
-            Report::Spi { .. } => id::SPI,
-            Report::Encoder { .. } => id::ENCODER,
-            Report::Sensor { .. } => id::SENSOR,
-            Report::SensorSupported { .. } => id::SENSOR_MAIN,
-            Report::Pong { .. } => id::PONG,
-            Report::ModuleSupported { .. } => id::MODULE_MAIN,
-            Report::Module { .. } => id::MODULE,
-            Report::Id { .. } => id::GET_ID,
-            Report::IdSet { .. } => id::SET_ID,
-            Report::Feature { .. } => id::FEATURE_CHECK,
-            Report::Debug { .. } => id::DEBUG_PRINT,
-            Report::Unknown { id, .. } => *id,
-        }
+        super::table::report_table!(report_id_match, self)
     }
 }
 

@@ -384,50 +384,72 @@ pub(crate) use command_table;
 /// [`report_id`](super::report_id) constant and the dialects that define it.
 /// The reports' layouts are not in the table yet (`report.rs`, `fast.rs`).
 macro_rules! report_table {
-    ($callback:ident) => {
+    ($callback:ident $(, $($extra:tt)+)?) => {
         $callback! {
+            $([$($extra)+])?
             /// SERIAL_LOOP_BACK_REPORT.
-            0 SERIAL_LOOP_BACK in [Mirte13, Mirte12, Upstream11];
+            0 SERIAL_LOOP_BACK in [Mirte13, Mirte12, Upstream11]
+                { "serial_loop_back_report" [LoopBack] };
             /// DIGITAL_REPORT.
-            2 DIGITAL in [Mirte13, Mirte12, Upstream11];
+            2 DIGITAL in [Mirte13, Mirte12, Upstream11]
+                { "digital_report" [Digital] };
             /// ANALOG_REPORT.
-            3 ANALOG in [Mirte13, Mirte12, Upstream11];
+            3 ANALOG in [Mirte13, Mirte12, Upstream11]
+                { "analog_report" [Analog] };
             /// FIRMWARE_REPORT.
-            5 FIRMWARE in [Mirte13, Mirte12, Upstream11];
+            5 FIRMWARE in [Mirte13, Mirte12, Upstream11]
+                { "firmware_version" [FirmwareVersion] };
             /// REPORT_PICO_UNIQUE_ID.
-            6 UNIQUE_ID in [Mirte13, Mirte12, Upstream11];
+            6 UNIQUE_ID in [Mirte13, Mirte12, Upstream11]
+                { "pico_unique_id" [UniqueId] };
             /// I2C_WRITE_REPORT (upstream: I2C_WRITE_FAILED).
-            8 I2C_WRITE in [Mirte13, Mirte12, Upstream11];
+            8 I2C_WRITE in [Mirte13, Mirte12, Upstream11]
+                { "i2c_write_report" [I2cWrite], "i2c_write_failed" [I2cWriteFailed] };
             /// I2C_READ_FAILED.
-            9 I2C_READ_FAILED in [Mirte13, Mirte12];
+            9 I2C_READ_FAILED in [Mirte13, Mirte12]
+                { "i2c_read_failed" [I2cReadFailed] };
             /// I2C_READ_REPORT.
-            10 I2C_READ in [Mirte13, Mirte12, Upstream11];
+            10 I2C_READ in [Mirte13, Mirte12, Upstream11]
+                { "i2c_read_report" [I2cRead, I2cReadUpstream] };
             /// SONAR_DISTANCE.
-            11 SONAR in [Mirte13, Mirte12, Upstream11];
+            11 SONAR in [Mirte13, Mirte12, Upstream11]
+                { "sonar_distance" [Sonar] };
             /// DHT_REPORT.
-            12 DHT in [Mirte13, Mirte12, Upstream11];
+            12 DHT in [Mirte13, Mirte12, Upstream11]
+                { "dht_report" [Dht] };
             /// SPI_REPORT.
-            13 SPI in [Mirte13, Mirte12, Upstream11];
+            13 SPI in [Mirte13, Mirte12, Upstream11]
+                { "spi_report" [Spi] };
             /// ENCODER_REPORT.
-            14 ENCODER in [Mirte13, Mirte12];
+            14 ENCODER in [Mirte13, Mirte12]
+                { "encoder_report" [Encoder] };
             /// SENSOR_REPORT.
-            20 SENSOR in [Mirte13, Mirte12];
+            20 SENSOR in [Mirte13, Mirte12]
+                { "sensor_report" [Sensor] };
             /// SENSOR_MAIN_REPORT.
-            21 SENSOR_MAIN in [Mirte13];
+            21 SENSOR_MAIN in [Mirte13]
+                { "sensor_main_report" [SensorSupported] };
             /// PONG_REPORT.
-            32 PONG in [Mirte13, Mirte12];
+            32 PONG in [Mirte13, Mirte12]
+                { "pong" [Pong] };
             /// MODULE_MAIN_REPORT.
-            33 MODULE_MAIN in [Mirte13];
+            33 MODULE_MAIN in [Mirte13]
+                { "module_main_report" [ModuleSupported] };
             /// MODULE_REPORT.
-            34 MODULE in [Mirte13];
+            34 MODULE in [Mirte13]
+                { "module_report" [Module] };
             /// GET_ID_REPORT.
-            35 GET_ID in [Mirte13];
+            35 GET_ID in [Mirte13]
+                { "get_id_report" [Id] };
             /// SET_ID_REPORT.
-            36 SET_ID in [Mirte13];
+            36 SET_ID in [Mirte13]
+                { "set_id_report" [IdSet] };
             /// FEATURE_CHECK.
-            37 FEATURE_CHECK in [Mirte13];
+            37 FEATURE_CHECK in [Mirte13]
+                { "feature_check" [Feature] };
             /// DEBUG_PRINT.
-            99 DEBUG_PRINT in [Mirte13, Mirte12];
+            99 DEBUG_PRINT in [Mirte13, Mirte12]
+                { "debug_print" [Debug] };
         }
     };
 }
