@@ -236,8 +236,12 @@
 //! A command whose layout depends on its content or its dialect is a
 //! `custom` row: the row carries its variants, and its arms are written in
 //! `parse_payload` and `write_custom` (`command.rs`), `visit_custom`
-//! (`fields.rs`) and `read_command` (`schema.rs`). Reports are not in a table
-//! yet.
+//! (`fields.rs`) and `read_command` (`schema.rs`). Reports have a table of
+//! their own in the same file (`report_table!`: the id, its [`report_id`]
+//! constant, the dialects, the `type` names and their variants), which gives
+//! the report ids, the report dialect table, [`Report::NAMES`],
+//! [`Report::name`] and [`Report::id`]; their layouts are still written out
+//! in `report.rs`, `fast.rs`, `fields.rs` and `schema.rs`.
 
 mod buf;
 mod command;
