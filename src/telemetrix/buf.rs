@@ -11,7 +11,8 @@ use super::dialect::Dialect;
 use super::error::Error;
 use super::module::{ModuleCommand, ModuleType};
 use super::quirk::{command_quirk, report_quirk, Quirk};
-use super::report::{parse_report_with, report_known, Report};
+use super::report::{parse_report_with, Report};
+use super::wire::report_known;
 use super::wire::{MAX_COMMAND_FRAME, MAX_FRAME_LEN, MAX_REPORT_FRAME};
 use crate::{Encode, EncodeError};
 

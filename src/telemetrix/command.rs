@@ -15,56 +15,200 @@ use crate::{Encode, EncodeError};
 
 use command_id as id;
 
-/// Whether `dialect` defines command `id` (and robowire covers it there).
-pub(crate) const fn command_known(dialect: Dialect, id: u8) -> bool {
-    match dialect {
-        Dialect::Mirte13 => id <= id::BOOTLOADER_RESET,
-        Dialect::Mirte12 => id <= id::PING,
-        Dialect::Upstream11 => id <= id::SPI_CS_CONTROL,
-    }
+/// The codec's parts that come from the command table: the dialect and
+/// `LEN` tables, `Command::id`, and the payloads of the `plain` rows (the
+/// `custom` ones are [`Command::write_custom`] and [`parse_custom`]).
+macro_rules! command_codec {
+    ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
+        /// Whether `dialect` defines command `id` (and robowire covers it there).
+        pub(crate) const fn command_known(dialect: Dialect, id: u8) -> bool {
+            match id {
+                $($n => matches!(dialect, $(Dialect::$d)|+),)*
+                _ => false,
+            }
+        }
+
+        /// The smallest and largest `LEN` a command can have, or `None` for
+        /// an unknown id. Used to reject a candidate from its first two bytes.
+        pub(crate) const fn command_len_range(dialect: Dialect, id: u8) -> Option<(u8, u8)> {
+            if !command_known(dialect, id) {
+                return None;
+            }
+            Some(match id {
+                $($n => len_range!(dialect, $lens),)*
+                _ => return None,
+            })
+        }
+
+        impl Command<'_> {
+            /// The command id.
+            pub const fn id(&self) -> u8 {
+                match self {
+                    $($(Command::$v { .. })|+ => $n,)*
+                }
+            }
+
+            fn write_payload(&self, w: &mut Writer<'_>) {
+                match *self {
+                    $($(Command::$v { .. })|+ => {
+                        write_row!(self, w, $codec $($p)? { $($body)* })
+                    })*
+                }
+            }
+        }
+    };
 }
 
-/// The smallest and largest `LEN` a command can have, or `None` for an unknown
-/// id. Used to reject a candidate from its first two bytes.
-pub(crate) const fn command_len_range(dialect: Dialect, id: u8) -> Option<(u8, u8)> {
-    if !command_known(dialect, id) {
-        return None;
-    }
-    let up = matches!(dialect, Dialect::Upstream11);
-    Some(match id {
-        id::SET_PIN_MODE => (3, 6),
-        // Up to 9 pins and, as a real host may send, 1 or 2 trailing bytes
-        // that the firmware ignores (it takes (LEN - 1) / 3 pins).
-        id::PWM_WRITE if matches!(dialect, Dialect::Mirte13) => (4, 30),
-        id::PWM_WRITE => (4, 4),
-        id::SERVO_ATTACH => (2, 6),
-        id::SERVO_WRITE | id::I2C_BEGIN | id::SPI_READ_BLOCKING => (4, 4),
-        id::I2C_READ if up => (6, 6),
-        id::I2C_READ => (7, 7),
-        id::I2C_WRITE if up => (6, 30),
-        id::I2C_WRITE => (7, 30),
-        id::SPI_INIT => (10, 30),
-        id::SPI_WRITE_BLOCKING => (3, 30),
-        id::INITIALIZE_NEO_PIXELS | id::SET_NEO_PIXEL => (6, 6),
-        id::CLEAR_ALL_NEO_PIXELS => (1, 2),
-        id::FILL_NEO_PIXELS | id::SPI_SET_FORMAT => (5, 5),
-        id::ENCODER_NEW if matches!(dialect, Dialect::Mirte12) => (4, 4),
-        id::ENCODER_NEW => (5, 5),
-        id::SENSOR_NEW if matches!(dialect, Dialect::Mirte12) => (3, 9),
-        id::SENSOR_NEW => (3, 10),
-        id::MODULE_NEW => (3, 30),
-        id::MODULE_DATA => (2, 30),
-        id::DIGITAL_WRITE | id::MODIFY_REPORTING | id::SONAR_NEW | id::SPI_CS_CONTROL => (3, 3),
-        id::SERIAL_LOOP_BACK
-        | id::SERVO_DETACH
-        | id::DHT_NEW
-        | id::SET_SCAN_DELAY
-        | id::PING
-        | id::SET_ID
-        | id::FEATURE_CHECK => (2, 2),
-        _ => (1, 1),
-    })
+/// A row's `LEN` range: one pair, or a `match` on the dialect.
+macro_rules! len_range {
+    ($dialect:ident, ($lo:literal, $hi:literal)) => {
+        ($lo, $hi)
+    };
+    ($dialect:ident, { $($arms:tt)* }) => {
+        match $dialect { $($arms)* }
+    };
 }
+
+/// Write a row's payload.
+macro_rules! write_row {
+    ($command:ident, $w:ident, custom { $($decl:tt)* }) => {
+        $command.write_custom($w)
+    };
+    ($command:ident, $w:ident, plain $p:ident {}) => {{}};
+    ($command:ident, $w:ident, plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
+        if let Command::$p { $($f),* } = *$command {
+            $(write_field!($w, $f, $kind $(($($arg)*))?);)*
+        }
+    };
+}
+
+/// Write one field of a `plain` row.
+macro_rules! write_field {
+    ($w:ident, $f:ident, counted_pins $args:tt) => {
+        write_field!($w, $f, counted)
+    };
+    ($w:ident, $f:ident, nonzero_u32) => {
+        $w.u32($f)
+    };
+    ($w:ident, $f:ident, trailing_u16_pair $args:tt) => {
+        if let Some((a, b)) = $f {
+            $w.u16(a);
+            $w.u16(b);
+        }
+    };
+    ($w:ident, $f:ident, counted $($args:tt)?) => {{
+        $w.u8($f.len() as u8);
+        $w.bytes($f);
+    }};
+    ($w:ident, $f:ident, trailing_flag) => {
+        if let Some(flag) = $f {
+            $w.flag(flag);
+        }
+    };
+    ($w:ident, $f:ident, flag) => {
+        $w.flag($f)
+    };
+    ($w:ident, $f:ident, level) => {
+        $w.flag($f)
+    };
+    ($w:ident, $f:ident, u16) => {
+        $w.u16($f)
+    };
+    ($w:ident, $f:ident, rgb) => {
+        $w.bytes(&[$f.r, $f.g, $f.b])
+    };
+    // u8, pin, range
+    ($w:ident, $f:ident, $kind:ident $($args:tt)?) => {
+        $w.u8($f)
+    };
+}
+
+/// The parser's `match` on the command id: the arms of the `plain` rows from
+/// the command table, then the hand-written ones (`custom` rows, unknown
+/// ids), in one `match` so that the Pico links one compact function. A
+/// muncher, because a `custom` row contributes no arm.
+macro_rules! parse_match {
+    ([($dialect:ident, $r:ident, $cmd:ident) { $($custom:tt)* }] $($rows:tt)*) => {
+        parse_match!(@rows ($dialect, $r, $cmd) [$($custom)*] [] $($rows)*)
+    };
+    (@rows $names:tt $custom:tt [$($arms:tt)*]
+        $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
+        len $lens:tt custom { $($decl:tt)* }; $($rest:tt)*) => {
+        parse_match!(@rows $names $custom [$($arms)*] $($rest)*)
+    };
+    (@rows ($dialect:ident, $r:ident, $cmd:ident) $custom:tt [$($arms:tt)*]
+        $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
+        len $lens:tt plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? };
+        $($rest:tt)*) => {
+        parse_match!(@rows ($dialect, $r, $cmd) $custom [
+            $($arms)*
+            $n => Command::$p { $($f: read_field!($r, $cmd, $f, $key, $kind $(($($arg)*))?),)* },
+        ] $($rest)*)
+    };
+    (@rows ($dialect:ident, $r:ident, $cmd:ident) [$($custom:tt)*] [$($arms:tt)*]) => {
+        match $cmd {
+            $($arms)*
+            $($custom)*
+        }
+    };
+}
+
+/// Read and check one field of a `plain` row.
+macro_rules! read_field {
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, counted_pins($count:literal, $each:literal)) => {{
+        let pins = counted($r, $count, 0)?;
+        ensure(pins.iter().all(|&p| p < PIN_COUNT), $cmd, $each)?;
+        pins
+    }};
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, nonzero_u32) => {{
+        let v = $r.u32()?;
+        ensure(v >= 1, $cmd, $key)?;
+        v
+    }};
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, trailing_u16_pair $args:tt) => {
+        if $r.remaining() > 0 {
+            Some(($r.u16()?, $r.u16()?))
+        } else {
+            None
+        }
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, counted($count:literal)) => {
+        counted($r, $count, 0)?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, trailing_flag) => {
+        if $r.remaining() > 0 {
+            Some($r.flag($key)?)
+        } else {
+            None
+        }
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, u8) => {
+        $r.u8()?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, u16) => {
+        $r.u16()?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, pin) => {
+        $r.pin($key)?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, flag) => {
+        $r.flag($key)?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, level) => {
+        $r.flag($key)?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, rgb) => {
+        rgb($r)?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, range($lo:literal, $hi:literal)) => {{
+        let v = $r.u8()?;
+        ensure(($lo..=$hi).contains(&v), $cmd, stringify!($f))?;
+        v
+    }};
+}
+
+super::table::command_table!(command_codec);
 
 /// Pull resistor of a digital input (SET_PIN_MODE modes 0, 3, 4).
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -179,330 +323,80 @@ pub struct Pulls {
     pub down: bool,
 }
 
-/// A command, host → Pico. Variable byte fields (I2C and SPI data, chip
-/// selects, MODULE_NEW bus ids, MODULE_DATA) borrow from the frame they were
-/// parsed from or from the caller; [`CommandBuf`](super::CommandBuf) is the
-/// owned form.
-///
-/// Every variant is encoded with its full payload (the firmware never clears
-/// its command buffer); the encoder refuses values the firmware would
-/// mishandle (pins ≥ 30, counts above the spec §4 maxima, ids the dialect does
-/// not define).
-///
-/// With the `serde` feature it serializes in the JSON-lines schema of the
-/// `robowire` tool (`{"type":"ping","counter":7}`); deserialize a
-/// [`CommandBuf`](super::CommandBuf), which owns its bytes.
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Command<'a> {
-    /// 0 SERIAL_LOOP_BACK: the Pico echoes `byte` in report 0.
-    LoopBack {
-        /// The byte to echo.
-        byte: u8,
-    },
-    /// 1 SET_PIN_MODE.
-    SetPinMode {
-        /// GPIO number (< 30), or the analog pin for [`PinMode::AnalogInput`].
-        pin: u8,
-        /// Mode and tail.
-        mode: PinMode,
-    },
-    /// 2 DIGITAL_WRITE.
-    DigitalWrite {
-        /// GPIO number (< 30).
-        pin: u8,
-        /// Level, `true` for high: `1` on the wire, in JSON and in `Display`
-        /// (see [levels and flags](super#levels-and-flags)).
-        value: bool,
-    },
-    /// 3 PWM_WRITE (k pins at once in mirte 1.3).
-    PwmWrite(PwmPins),
-    /// 4 MODIFY_REPORTING.
-    ModifyReporting(ModifyReporting),
-    /// 5 GET_FIRMWARE_VERSION: answered by report 5.
-    GetFirmwareVersion,
-    /// 6 GET_PICO_UNIQUE_ID: answered by report 6.
-    GetUniqueId,
-    /// 7 SERVO_ATTACH (sets PWM mode).
-    ServoAttach {
-        /// GPIO number (< 30).
-        pin: u8,
-        /// The ignored `u16 min_us, u16 max_us` that some hosts append.
-        pulse_range: Option<(u16, u16)>,
-    },
-    /// 8 SERVO_WRITE.
-    ServoWrite {
-        /// GPIO number (< 30).
-        pin: u8,
-        /// Pulse width in µs.
-        pulse_us: u16,
-    },
-    /// 9 SERVO_DETACH (a no-op in the firmware).
-    ServoDetach {
-        /// GPIO number (< 30).
-        pin: u8,
-    },
-    /// 10 I2C_BEGIN. `port == sda == scl` selects the port's default pins.
-    I2cBegin {
-        /// 0 or 1.
-        port: u8,
-        /// SDA GPIO (< 30).
-        sda: u8,
-        /// SCL GPIO (< 30).
-        scl: u8,
-    },
-    /// 11 I2C_READ, mirte layout: answered by report 10 or 9, or not at all
-    /// when the register write fails.
-    I2cRead {
-        /// 0 or 1.
-        port: u8,
-        /// 7-bit address.
-        addr: u8,
-        /// Echoed in the reply.
-        msg_id: u8,
-        /// Register written before the read.
-        reg: u8,
-        /// Bytes to read, 1..=57.
-        len: u8,
-        /// 0 (stop), 1 (no stop), or 254 (skip the register write, no stop).
-        no_stop: u8,
-    },
-    /// 11 I2C_READ, upstream layout (no `msg_id`).
-    I2cReadUpstream {
-        /// 0 or 1.
-        port: u8,
-        /// 7-bit address.
-        addr: u8,
-        /// Register written before the read.
-        reg: u8,
-        /// Bytes to read, 1..=57.
-        len: u8,
-        /// 0 or 1.
-        no_stop: u8,
-    },
-    /// 12 I2C_WRITE, mirte layout: answered by report 8.
-    I2cWrite {
-        /// 0 or 1.
-        port: u8,
-        /// 7-bit address.
-        addr: u8,
-        /// Echoed in the reply.
-        msg_id: u8,
-        /// 0 or 1.
-        no_stop: u8,
-        /// 1..=24 bytes.
-        data: &'a [u8],
-    },
-    /// 12 I2C_WRITE, upstream layout (no `msg_id`).
-    I2cWriteUpstream {
-        /// 0 or 1.
-        port: u8,
-        /// 7-bit address.
-        addr: u8,
-        /// 0 or 1.
-        no_stop: u8,
-        /// 1..=25 bytes.
-        data: &'a [u8],
-    },
-    /// 13 SONAR_NEW (`trig == echo`: single-pin sonar). At most 4 are used.
-    SonarNew {
-        /// Trigger GPIO (< 30).
-        trig: u8,
-        /// Echo GPIO (< 30).
-        echo: u8,
-    },
-    /// 14 DHT_NEW. At most 2 are used.
-    DhtNew {
-        /// GPIO number (< 30).
-        pin: u8,
-    },
-    /// 15 STOP_ALL_REPORTS.
-    StopAllReports,
-    /// 16 ENABLE_ALL_REPORTS.
-    EnableAllReports,
-    /// 17 RESET_DATA (a no-op).
-    ResetData,
-    /// 18 RESET_BOARD.
-    ResetBoard,
-    /// 19 INITIALIZE_NEO_PIXELS: fills and shows.
-    InitNeoPixels {
-        /// GPIO number (< 30).
-        pin: u8,
-        /// Number of pixels, ≤ 100.
-        count: u8,
-        /// Fill colour.
-        rgb: Rgb,
-    },
-    /// 20 SHOW_NEO_PIXELS.
-    ShowNeoPixels,
-    /// 21 SET_NEO_PIXEL.
-    SetNeoPixel {
-        /// Pixel index (< 100).
-        index: u8,
-        /// Colour.
-        rgb: Rgb,
-        /// Show at once.
-        auto_show: bool,
-    },
-    /// 22 CLEAR_ALL_NEO_PIXELS (always shows).
-    ClearAllNeoPixels {
-        /// The ignored `auto_show` byte some hosts append.
-        auto_show: Option<bool>,
-    },
-    /// 23 FILL_NEO_PIXELS.
-    FillNeoPixels {
-        /// Colour.
-        rgb: Rgb,
-        /// Show at once.
-        auto_show: bool,
-    },
-    /// 24 SPI_INIT.
-    SpiInit {
-        /// 0 or 1.
-        port: u8,
-        /// MISO or MOSI GPIO (< 30).
-        pin_a: u8,
-        /// MOSI or MISO GPIO (< 30).
-        pin_b: u8,
-        /// Clock GPIO (< 30).
-        clk: u8,
-        /// Clock frequency in Hz (≥ 1).
-        freq_hz: u32,
-        /// Chip-select GPIOs (each < 30), at most 20.
-        cs_pins: &'a [u8],
-    },
-    /// 25 SPI_WRITE_BLOCKING.
-    SpiWrite {
-        /// 0 or 1.
-        port: u8,
-        /// At most 27 bytes.
-        data: &'a [u8],
-    },
-    /// 26 SPI_READ_BLOCKING: answered by report 13.
-    SpiRead {
-        /// 0 or 1.
-        port: u8,
-        /// Bytes to read, ≤ 60.
-        len: u8,
-        /// Byte clocked out while reading.
-        tx_fill: u8,
-    },
-    /// 27 SPI_SET_FORMAT.
-    SpiSetFormat {
-        /// 0 or 1.
-        port: u8,
-        /// 4..=16.
-        data_bits: u8,
-        /// Clock polarity.
-        cpol: bool,
-        /// Clock phase.
-        cpha: bool,
-    },
-    /// 28 SPI_CS_CONTROL.
-    SpiCsControl {
-        /// GPIO number (< 30).
-        cs_pin: u8,
-        /// Level, `true` for high (`level` `0`/`1` in JSON and `Display`:
-        /// [levels and flags](super#levels-and-flags)).
-        high: bool,
-    },
-    /// 29 SET_SCAN_DELAY (mirte only).
-    SetScanDelay {
-        /// Scan period in ms.
-        delay_ms: u8,
-    },
-    /// 30 ENCODER_NEW (mirte only). At most 4 are used.
-    EncoderNew {
-        /// Single or quadrature.
-        kind: EncoderKind,
-        /// GPIO A (< 30).
-        pin_a: u8,
-        /// GPIO B (< 30); 0 for [`EncoderKind::Single`].
-        pin_b: u8,
-        /// Pull resistors: present in mirte 1.3, whose frame carries the
-        /// byte; `None` in mirte 1.2, whose frame does not.
-        pulls: Option<Pulls>,
-    },
-    /// 31 SENSOR_NEW (mirte 1.3, and mirte 1.2's own layout
-    /// [`SensorNew::AddMirte12`]).
-    SensorNew(SensorNew),
-    /// 32 PING (mirte only): answered by report 32.
-    Ping {
-        /// Echoed in the reply.
-        counter: u8,
-    },
-    /// 33 MODULE_NEW (mirte 1.3).
-    ModuleNew(ModuleNew<'a>),
-    /// 34 MODULE_DATA (mirte 1.3): build typed data with
-    /// [`Command::module_data`], read it with the module's `parse`.
-    ModuleData {
-        /// Module number (modules are numbered 0, 1, 2, … in creation order).
-        module_num: u8,
-        /// 1..=28 bytes for the module.
-        data: &'a [u8],
-    },
-    /// 35 GET_ID (mirte 1.3): answered by report 35.
-    GetId,
-    /// 36 SET_ID (mirte 1.3): answered by report 36.
-    SetId {
-        /// The id to save.
-        id: u8,
-    },
-    /// 37 FEATURE_CHECK (mirte 1.3): answered by report 37.
-    FeatureCheck {
-        /// The command id asked about.
-        msg_type: u8,
-    },
-    /// 38 BOOTLOADER_RESET (mirte 1.3).
-    BootloaderReset,
+/// The `Command` enum, from the command table: a `plain` row's variant is
+/// built from its fields (a unit variant when it has none), a `custom` row
+/// gives its variants as written.
+macro_rules! command_enum {
+    (@rows [$($vars:tt)*]
+        $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
+        len $lens:tt plain $p:ident {}; $($rest:tt)*) => {
+        command_enum!(@rows [$($vars)* $(#[$vm])* $p,] $($rest)*);
+    };
+    (@rows [$($vars:tt)*]
+        $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
+        len $lens:tt plain $p:ident {
+            $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)?
+        }; $($rest:tt)*) => {
+        command_enum!(@rows [
+            $($vars)* $(#[$vm])* $p { $($(#[$fm])* $f: field_type!($kind),)* },
+        ] $($rest)*);
+    };
+    (@rows [$($vars:tt)*]
+        $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
+        len $lens:tt custom { $($decl:tt)* }; $($rest:tt)*) => {
+        command_enum!(@rows [$($vars)* $($decl)*] $($rest)*);
+    };
+    (@rows [$($vars:tt)*]) => {
+        /// A command, host → Pico. Variable byte fields (I2C and SPI data, chip
+        /// selects, MODULE_NEW bus ids, MODULE_DATA) borrow from the frame they were
+        /// parsed from or from the caller; [`CommandBuf`](super::CommandBuf) is the
+        /// owned form.
+        ///
+        /// Every variant is encoded with its full payload (the firmware never clears
+        /// its command buffer); the encoder refuses values the firmware would
+        /// mishandle (pins ≥ 30, counts above the spec §4 maxima, ids the dialect does
+        /// not define).
+        ///
+        /// With the `serde` feature it serializes in the JSON-lines schema of the
+        /// `robowire` tool (`{"type":"ping","counter":7}`); deserialize a
+        /// [`CommandBuf`](super::CommandBuf), which owns its bytes.
+        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum Command<'a> {
+            $($vars)*
+        }
+    };
+    ($($rows:tt)*) => {
+        command_enum!(@rows [] $($rows)*);
+    };
 }
 
-impl Command<'_> {
-    /// The command id.
-    pub const fn id(&self) -> u8 {
-        match self {
-            Command::LoopBack { .. } => id::SERIAL_LOOP_BACK,
-            Command::SetPinMode { .. } => id::SET_PIN_MODE,
-            Command::DigitalWrite { .. } => id::DIGITAL_WRITE,
-            Command::PwmWrite(_) => id::PWM_WRITE,
-            Command::ModifyReporting(_) => id::MODIFY_REPORTING,
-            Command::GetFirmwareVersion => id::GET_FIRMWARE_VERSION,
-            Command::GetUniqueId => id::GET_PICO_UNIQUE_ID,
-            Command::ServoAttach { .. } => id::SERVO_ATTACH,
-            Command::ServoWrite { .. } => id::SERVO_WRITE,
-            Command::ServoDetach { .. } => id::SERVO_DETACH,
-            Command::I2cBegin { .. } => id::I2C_BEGIN,
-            Command::I2cRead { .. } | Command::I2cReadUpstream { .. } => id::I2C_READ,
-            Command::I2cWrite { .. } | Command::I2cWriteUpstream { .. } => id::I2C_WRITE,
-            Command::SonarNew { .. } => id::SONAR_NEW,
-            Command::DhtNew { .. } => id::DHT_NEW,
-            Command::StopAllReports => id::STOP_ALL_REPORTS,
-            Command::EnableAllReports => id::ENABLE_ALL_REPORTS,
-            Command::ResetData => id::RESET_DATA,
-            Command::ResetBoard => id::RESET_BOARD,
-            Command::InitNeoPixels { .. } => id::INITIALIZE_NEO_PIXELS,
-            Command::ShowNeoPixels => id::SHOW_NEO_PIXELS,
-            Command::SetNeoPixel { .. } => id::SET_NEO_PIXEL,
-            Command::ClearAllNeoPixels { .. } => id::CLEAR_ALL_NEO_PIXELS,
-            Command::FillNeoPixels { .. } => id::FILL_NEO_PIXELS,
-            Command::SpiInit { .. } => id::SPI_INIT,
-            Command::SpiWrite { .. } => id::SPI_WRITE_BLOCKING,
-            Command::SpiRead { .. } => id::SPI_READ_BLOCKING,
-            Command::SpiSetFormat { .. } => id::SPI_SET_FORMAT,
-            Command::SpiCsControl { .. } => id::SPI_CS_CONTROL,
-            Command::SetScanDelay { .. } => id::SET_SCAN_DELAY,
-            Command::EncoderNew { .. } => id::ENCODER_NEW,
-            Command::SensorNew(_) => id::SENSOR_NEW,
-            Command::Ping { .. } => id::PING,
-            Command::ModuleNew(_) => id::MODULE_NEW,
-            Command::ModuleData { .. } => id::MODULE_DATA,
-            Command::GetId => id::GET_ID,
-            Command::SetId { .. } => id::SET_ID,
-            Command::FeatureCheck { .. } => id::FEATURE_CHECK,
-            Command::BootloaderReset => id::BOOTLOADER_RESET,
-        }
-    }
+/// The Rust type of a `plain` row's field kind.
+macro_rules! field_type {
+    (counted_pins) => { &'a [u8] };
+    (nonzero_u32) => { u32 };
+    (trailing_u16_pair) => { Option<(u16, u16)> };
+    (counted) => { &'a [u8] };
+    (trailing_flag) => { Option<bool> };
+    (u16) => {
+        u16
+    };
+    (flag) => {
+        bool
+    };
+    (level) => {
+        bool
+    };
+    (rgb) => {
+        Rgb
+    };
+    // u8, pin, range
+    ($kind:ident) => {
+        u8
+    };
 }
+
+super::table::command_table!(command_enum);
 
 impl<'a> Command<'a> {
     /// Frame length of this command in `dialect`.
@@ -650,9 +544,9 @@ impl<'a> Command<'a> {
         w.patch_len();
     }
 
-    fn write_payload(&self, w: &mut Writer<'_>) {
+    /// Write the payload of a `custom` row of the command table.
+    fn write_custom(&self, w: &mut Writer<'_>) {
         match self {
-            Command::LoopBack { byte } => w.u8(*byte),
             Command::SetPinMode { pin, mode } => {
                 w.u8(*pin);
                 match *mode {
@@ -697,19 +591,6 @@ impl<'a> Command<'a> {
                 w.u8(kind);
                 w.u8(pin);
             }
-            Command::ServoAttach { pin, pulse_range } => {
-                w.u8(*pin);
-                if let Some((min, max)) = pulse_range {
-                    w.u16(*min);
-                    w.u16(*max);
-                }
-            }
-            Command::ServoWrite { pin, pulse_us } => {
-                w.u8(*pin);
-                w.u16(*pulse_us);
-            }
-            Command::ServoDetach { pin } | Command::DhtNew { pin } => w.u8(*pin),
-            Command::I2cBegin { port, sda, scl } => w.bytes(&[*port, *sda, *scl]),
             Command::I2cRead {
                 port,
                 addr,
@@ -744,69 +625,6 @@ impl<'a> Command<'a> {
                 w.bytes(&[*port, *addr, data.len() as u8, *no_stop]);
                 w.bytes(data);
             }
-            Command::SonarNew { trig, echo } => w.bytes(&[*trig, *echo]),
-            Command::StopAllReports
-            | Command::EnableAllReports
-            | Command::ResetData
-            | Command::ResetBoard
-            | Command::ShowNeoPixels
-            | Command::GetFirmwareVersion
-            | Command::GetUniqueId
-            | Command::GetId
-            | Command::BootloaderReset => {}
-            Command::InitNeoPixels { pin, count, rgb } => {
-                w.bytes(&[*pin, *count, rgb.r, rgb.g, rgb.b]);
-            }
-            Command::SetNeoPixel {
-                index,
-                rgb,
-                auto_show,
-            } => {
-                w.bytes(&[*index, rgb.r, rgb.g, rgb.b]);
-                w.flag(*auto_show);
-            }
-            Command::ClearAllNeoPixels { auto_show } => {
-                if let Some(a) = auto_show {
-                    w.flag(*a);
-                }
-            }
-            Command::FillNeoPixels { rgb, auto_show } => {
-                w.bytes(&[rgb.r, rgb.g, rgb.b]);
-                w.flag(*auto_show);
-            }
-            Command::SpiInit {
-                port,
-                pin_a,
-                pin_b,
-                clk,
-                freq_hz,
-                cs_pins,
-            } => {
-                w.bytes(&[*port, *pin_a, *pin_b, *clk]);
-                w.u32(*freq_hz);
-                w.u8(cs_pins.len() as u8);
-                w.bytes(cs_pins);
-            }
-            Command::SpiWrite { port, data } => {
-                w.bytes(&[*port, data.len() as u8]);
-                w.bytes(data);
-            }
-            Command::SpiRead { port, len, tx_fill } => w.bytes(&[*port, *len, *tx_fill]),
-            Command::SpiSetFormat {
-                port,
-                data_bits,
-                cpol,
-                cpha,
-            } => {
-                w.bytes(&[*port, *data_bits]);
-                w.flag(*cpol);
-                w.flag(*cpha);
-            }
-            Command::SpiCsControl { cs_pin, high } => {
-                w.u8(*cs_pin);
-                w.flag(*high);
-            }
-            Command::SetScanDelay { delay_ms } => w.u8(*delay_ms),
             Command::EncoderNew {
                 kind,
                 pin_a,
@@ -823,14 +641,13 @@ impl<'a> Command<'a> {
                 }
             }
             Command::SensorNew(s) => s.write(w),
-            Command::Ping { counter } => w.u8(*counter),
             Command::ModuleNew(m) => m.write(w),
             Command::ModuleData { module_num, data } => {
                 w.u8(*module_num);
                 w.bytes(data);
             }
-            Command::SetId { id } => w.u8(*id),
-            Command::FeatureCheck { msg_type } => w.u8(*msg_type),
+            // The `plain` rows: written by `write_payload`.
+            _ => {}
         }
     }
 }
@@ -891,304 +708,195 @@ fn counted<'a>(r: &mut Reader<'a>, field: &'static str, min: u8) -> Result<&'a [
     r.take(usize::from(n))
 }
 
+/// Parse a command's payload: the `plain` rows' arms come from the command
+/// table, the `custom` rows' are written here, all in one `match`.
 fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>, Error> {
     let cmd = r.id();
-    Ok(match cmd {
-        id::SERIAL_LOOP_BACK => Command::LoopBack { byte: r.u8()? },
-        id::SET_PIN_MODE => {
-            let pin = r.u8()?;
-            let mode = match r.u8()? {
-                m @ (0 | 3 | 4) => PinMode::DigitalInput {
-                    pull: match m {
-                        3 => Pull::Up,
-                        4 => Pull::Down,
-                        _ => Pull::None,
+    Ok(
+        super::table::command_table!(parse_match, (dialect, r, cmd) {
+            id::SET_PIN_MODE => {
+                let pin = r.u8()?;
+                let mode = match r.u8()? {
+                    m @ (0 | 3 | 4) => PinMode::DigitalInput {
+                        pull: match m {
+                            3 => Pull::Up,
+                            4 => Pull::Down,
+                            _ => Pull::None,
+                        },
+                        report: r.flag("report_enable")?,
                     },
-                    report: r.flag("report_enable")?,
-                },
-                1 => PinMode::DigitalOutput,
-                2 => PinMode::PwmOutput,
-                5 => PinMode::AnalogInput {
-                    differential: r.u16()?,
-                    report: r.flag("report_enable")?,
-                },
-                _ => {
-                    return Err(Error::OutOfRange {
-                        id: cmd,
-                        field: "mode",
-                    })
-                }
-            };
-            let pin_ok = match mode {
-                PinMode::AnalogInput { .. } => analog_pin_ok(dialect, pin),
-                _ => pin < PIN_COUNT,
-            };
-            ensure(pin_ok, cmd, "pin")?;
-            Command::SetPinMode { pin, mode }
-        }
-        // The firmware drives any non-zero level high (flagged as a quirk).
-        id::DIGITAL_WRITE => Command::DigitalWrite {
-            pin: r.pin("pin")?,
-            value: r.u8()? != 0,
-        },
-        id::PWM_WRITE => {
-            let mut pins = PwmPins::new();
-            // Whole triples; 1 or 2 trailing bytes (mirte 1.3's LEN range
-            // allows them) are ignored as the firmware ignores them, and
-            // flagged as a quirk.
-            while r.remaining() >= 3 {
-                let pin = PwmPin {
-                    pin: r.pin("pin")?,
-                    value: r.u16()?,
+                    1 => PinMode::DigitalOutput,
+                    2 => PinMode::PwmOutput,
+                    5 => PinMode::AnalogInput {
+                        differential: r.u16()?,
+                        report: r.flag("report_enable")?,
+                    },
+                    _ => {
+                        return Err(Error::OutOfRange {
+                            id: cmd,
+                            field: "mode",
+                        })
+                    }
                 };
-                pins.push(pin).map_err(|_| r.bad_length())?;
+                let pin_ok = match mode {
+                    PinMode::AnalogInput { .. } => analog_pin_ok(dialect, pin),
+                    _ => pin < PIN_COUNT,
+                };
+                ensure(pin_ok, cmd, "pin")?;
+                Command::SetPinMode { pin, mode }
             }
-            r.rest();
-            Command::PwmWrite(pins)
-        }
-        id::MODIFY_REPORTING => {
-            let kind = r.u8()?;
-            let pin = r.u8()?;
-            // Digital pins in mirte 1.3 are what a real host sends, although
-            // the firmware indexes them as pin - 26: accepted, and flagged as
-            // a quirk.
-            let digital_ok = pin < PIN_COUNT;
-            // Mirte 1.2's and upstream 1.1's clients send an analog pin's
-            // GPIO number (26..=30) unchecked where their firmware takes an
-            // ADC number: accepted as sent, and flagged as a quirk.
-            let analog_ok = analog_pin_ok(Dialect::Mirte13, pin) || analog_pin_ok(dialect, pin);
-            let m = match kind {
-                0 if pin == 0 => ModifyReporting::DisableAll,
-                1 if analog_ok => ModifyReporting::EnableAnalog { pin },
-                3 if analog_ok => ModifyReporting::DisableAnalog { pin },
-                2 if digital_ok => ModifyReporting::EnableDigital { pin },
-                4 if digital_ok => ModifyReporting::DisableDigital { pin },
-                0..=4 => {
-                    return Err(Error::OutOfRange {
-                        id: cmd,
-                        field: "pin",
-                    })
-                }
-                _ => {
-                    return Err(Error::OutOfRange {
-                        id: cmd,
-                        field: "type",
-                    })
-                }
-            };
-            Command::ModifyReporting(m)
-        }
-        id::GET_FIRMWARE_VERSION => Command::GetFirmwareVersion,
-        id::GET_PICO_UNIQUE_ID => Command::GetUniqueId,
-        id::SERVO_ATTACH => {
-            let pin = r.pin("pin")?;
-            let pulse_range = if r.remaining() > 0 {
-                Some((r.u16()?, r.u16()?))
-            } else {
-                None
-            };
-            Command::ServoAttach { pin, pulse_range }
-        }
-        id::SERVO_WRITE => Command::ServoWrite {
-            pin: r.pin("pin")?,
-            pulse_us: r.u16()?,
-        },
-        id::SERVO_DETACH => Command::ServoDetach { pin: r.pin("pin")? },
-        id::I2C_BEGIN => Command::I2cBegin {
-            port: port(r)?,
-            sda: r.pin("sda")?,
-            scl: r.pin("scl")?,
-        },
-        id::I2C_READ if dialect.is_mirte() => {
-            let (port, addr, msg_id, reg) = (port(r)?, i2c_addr(r)?, r.u8()?, r.u8()?);
-            let len = r.u8()?;
-            ensure((1..=57).contains(&len), cmd, "len")?;
-            let no_stop = r.u8()?;
-            ensure(matches!(no_stop, 0 | 1 | 254), cmd, "no_stop")?;
-            Command::I2cRead {
-                port,
-                addr,
-                msg_id,
-                reg,
-                len,
-                no_stop,
-            }
-        }
-        id::I2C_READ => {
-            let (port, addr, reg) = (port(r)?, i2c_addr(r)?, r.u8()?);
-            let len = r.u8()?;
-            ensure((1..=57).contains(&len), cmd, "len")?;
-            let no_stop = r.u8()?;
-            ensure(no_stop <= 1, cmd, "no_stop")?;
-            Command::I2cReadUpstream {
-                port,
-                addr,
-                reg,
-                len,
-                no_stop,
-            }
-        }
-        id::I2C_WRITE if dialect.is_mirte() => {
-            let (port, addr, msg_id) = (port(r)?, i2c_addr(r)?, r.u8()?);
-            let n = r.u8()?;
-            ensure(n >= 1, cmd, "len")?;
-            let no_stop = r.u8()?;
-            ensure(no_stop <= 1, cmd, "no_stop")?;
-            Command::I2cWrite {
-                port,
-                addr,
-                msg_id,
-                no_stop,
-                data: r.take(usize::from(n))?,
-            }
-        }
-        id::I2C_WRITE => {
-            let (port, addr) = (port(r)?, i2c_addr(r)?);
-            let n = r.u8()?;
-            ensure(n >= 1, cmd, "len")?;
-            let no_stop = r.u8()?;
-            ensure(no_stop <= 1, cmd, "no_stop")?;
-            Command::I2cWriteUpstream {
-                port,
-                addr,
-                no_stop,
-                data: r.take(usize::from(n))?,
-            }
-        }
-        id::SONAR_NEW => Command::SonarNew {
-            trig: r.pin("trig")?,
-            echo: r.pin("echo")?,
-        },
-        id::DHT_NEW => Command::DhtNew { pin: r.pin("pin")? },
-        id::STOP_ALL_REPORTS => Command::StopAllReports,
-        id::ENABLE_ALL_REPORTS => Command::EnableAllReports,
-        id::RESET_DATA => Command::ResetData,
-        id::RESET_BOARD => Command::ResetBoard,
-        id::INITIALIZE_NEO_PIXELS => {
-            let pin = r.pin("pin")?;
-            let count = r.u8()?;
-            ensure(count <= 100, cmd, "count")?;
-            Command::InitNeoPixels {
-                pin,
-                count,
-                rgb: rgb(r)?,
-            }
-        }
-        id::SHOW_NEO_PIXELS => Command::ShowNeoPixels,
-        id::SET_NEO_PIXEL => {
-            let index = r.u8()?;
-            ensure(index < 100, cmd, "index")?;
-            Command::SetNeoPixel {
-                index,
-                rgb: rgb(r)?,
-                auto_show: r.flag("auto_show")?,
-            }
-        }
-        id::CLEAR_ALL_NEO_PIXELS => Command::ClearAllNeoPixels {
-            auto_show: if r.remaining() > 0 {
-                Some(r.flag("auto_show")?)
-            } else {
-                None
+            // The firmware drives any non-zero level high (flagged as a quirk).
+            id::DIGITAL_WRITE => Command::DigitalWrite {
+                pin: r.pin("pin")?,
+                value: r.u8()? != 0,
             },
-        },
-        id::FILL_NEO_PIXELS => Command::FillNeoPixels {
-            rgb: rgb(r)?,
-            auto_show: r.flag("auto_show")?,
-        },
-        id::SPI_INIT => {
-            let port = port(r)?;
-            let (pin_a, pin_b, clk) = (r.pin("pin_a")?, r.pin("pin_b")?, r.pin("clk")?);
-            let freq_hz = r.u32()?;
-            ensure(freq_hz >= 1, cmd, "freq_hz")?;
-            let cs_pins = counted(r, "cs count", 0)?;
-            ensure(cs_pins.iter().all(|&p| p < PIN_COUNT), cmd, "cs_pin")?;
-            Command::SpiInit {
-                port,
-                pin_a,
-                pin_b,
-                clk,
-                freq_hz,
-                cs_pins,
-            }
-        }
-        id::SPI_WRITE_BLOCKING => Command::SpiWrite {
-            port: port(r)?,
-            data: counted(r, "len", 0)?,
-        },
-        id::SPI_READ_BLOCKING => {
-            let port = port(r)?;
-            let len = r.u8()?;
-            ensure(len <= 60, cmd, "len")?;
-            Command::SpiRead {
-                port,
-                len,
-                tx_fill: r.u8()?,
-            }
-        }
-        id::SPI_SET_FORMAT => {
-            let port = port(r)?;
-            let data_bits = r.u8()?;
-            ensure((4..=16).contains(&data_bits), cmd, "data_bits")?;
-            Command::SpiSetFormat {
-                port,
-                data_bits,
-                cpol: r.flag("cpol")?,
-                cpha: r.flag("cpha")?,
-            }
-        }
-        id::SPI_CS_CONTROL => Command::SpiCsControl {
-            cs_pin: r.pin("cs_pin")?,
-            high: r.flag("level")?,
-        },
-        id::SET_SCAN_DELAY => Command::SetScanDelay { delay_ms: r.u8()? },
-        id::ENCODER_NEW => {
-            // The firmware sets up a quadrature encoder for any type but 1;
-            // type 3 is accepted as that, and flagged as a quirk.
-            let kind = match r.u8()? {
-                1 => EncoderKind::Single,
-                2 | 3 => EncoderKind::Quadrature,
-                _ => {
-                    return Err(Error::OutOfRange {
-                        id: cmd,
-                        field: "type",
-                    })
+            id::PWM_WRITE => {
+                let mut pins = PwmPins::new();
+                // Whole triples; 1 or 2 trailing bytes (mirte 1.3's LEN range
+                // allows them) are ignored as the firmware ignores them, and
+                // flagged as a quirk.
+                while r.remaining() >= 3 {
+                    let pin = PwmPin {
+                        pin: r.pin("pin")?,
+                        value: r.u16()?,
+                    };
+                    pins.push(pin).map_err(|_| r.bad_length())?;
                 }
-            };
-            let pin_a = r.pin("pin_a")?;
-            let pin_b = r.pin("pin_b")?;
-            ensure(kind == EncoderKind::Quadrature || pin_b == 0, cmd, "pin_b")?;
-            let pulls = if dialect == Dialect::Mirte13 {
-                let bits = r.u8()?;
-                ensure(bits <= 3, cmd, "pulls")?;
-                Some(Pulls {
-                    up: bits & 1 != 0,
-                    down: bits & 2 != 0,
-                })
-            } else {
-                None
-            };
-            Command::EncoderNew {
-                kind,
-                pin_a,
-                pin_b,
-                pulls,
+                r.rest();
+                Command::PwmWrite(pins)
             }
-        }
-        id::SENSOR_NEW => Command::SensorNew(SensorNew::parse(r, dialect)?),
-        id::PING => Command::Ping { counter: r.u8()? },
-        id::MODULE_NEW => Command::ModuleNew(ModuleNew::parse(r)?),
-        id::MODULE_DATA => {
-            let module_num = r.u8()?;
-            let data = r.rest();
-            ensure(!data.is_empty(), cmd, "data")?;
-            Command::ModuleData { module_num, data }
-        }
-        id::GET_ID => Command::GetId,
-        id::SET_ID => Command::SetId { id: r.u8()? },
-        id::FEATURE_CHECK => Command::FeatureCheck { msg_type: r.u8()? },
-        id::BOOTLOADER_RESET => Command::BootloaderReset,
-        _ => return Err(Error::UnknownId { id: cmd }),
-    })
+            id::MODIFY_REPORTING => {
+                let kind = r.u8()?;
+                let pin = r.u8()?;
+                // Digital pins in mirte 1.3 are what a real host sends, although
+                // the firmware indexes them as pin - 26: accepted, and flagged as
+                // a quirk.
+                let digital_ok = pin < PIN_COUNT;
+                // Mirte 1.2's and upstream 1.1's clients send an analog pin's
+                // GPIO number (26..=30) unchecked where their firmware takes an
+                // ADC number: accepted as sent, and flagged as a quirk.
+                let analog_ok = analog_pin_ok(Dialect::Mirte13, pin) || analog_pin_ok(dialect, pin);
+                let m = match kind {
+                    0 if pin == 0 => ModifyReporting::DisableAll,
+                    1 if analog_ok => ModifyReporting::EnableAnalog { pin },
+                    3 if analog_ok => ModifyReporting::DisableAnalog { pin },
+                    2 if digital_ok => ModifyReporting::EnableDigital { pin },
+                    4 if digital_ok => ModifyReporting::DisableDigital { pin },
+                    0..=4 => {
+                        return Err(Error::OutOfRange {
+                            id: cmd,
+                            field: "pin",
+                        })
+                    }
+                    _ => {
+                        return Err(Error::OutOfRange {
+                            id: cmd,
+                            field: "type",
+                        })
+                    }
+                };
+                Command::ModifyReporting(m)
+            }
+            id::I2C_READ if dialect.is_mirte() => {
+                let (port, addr, msg_id, reg) = (port(r)?, i2c_addr(r)?, r.u8()?, r.u8()?);
+                let len = r.u8()?;
+                ensure((1..=57).contains(&len), cmd, "len")?;
+                let no_stop = r.u8()?;
+                ensure(matches!(no_stop, 0 | 1 | 254), cmd, "no_stop")?;
+                Command::I2cRead {
+                    port,
+                    addr,
+                    msg_id,
+                    reg,
+                    len,
+                    no_stop,
+                }
+            }
+            id::I2C_READ => {
+                let (port, addr, reg) = (port(r)?, i2c_addr(r)?, r.u8()?);
+                let len = r.u8()?;
+                ensure((1..=57).contains(&len), cmd, "len")?;
+                let no_stop = r.u8()?;
+                ensure(no_stop <= 1, cmd, "no_stop")?;
+                Command::I2cReadUpstream {
+                    port,
+                    addr,
+                    reg,
+                    len,
+                    no_stop,
+                }
+            }
+            id::I2C_WRITE if dialect.is_mirte() => {
+                let (port, addr, msg_id) = (port(r)?, i2c_addr(r)?, r.u8()?);
+                let n = r.u8()?;
+                ensure(n >= 1, cmd, "len")?;
+                let no_stop = r.u8()?;
+                ensure(no_stop <= 1, cmd, "no_stop")?;
+                Command::I2cWrite {
+                    port,
+                    addr,
+                    msg_id,
+                    no_stop,
+                    data: r.take(usize::from(n))?,
+                }
+            }
+            id::I2C_WRITE => {
+                let (port, addr) = (port(r)?, i2c_addr(r)?);
+                let n = r.u8()?;
+                ensure(n >= 1, cmd, "len")?;
+                let no_stop = r.u8()?;
+                ensure(no_stop <= 1, cmd, "no_stop")?;
+                Command::I2cWriteUpstream {
+                    port,
+                    addr,
+                    no_stop,
+                    data: r.take(usize::from(n))?,
+                }
+            }
+            id::ENCODER_NEW => {
+                // The firmware sets up a quadrature encoder for any type but 1;
+                // type 3 is accepted as that, and flagged as a quirk.
+                let kind = match r.u8()? {
+                    1 => EncoderKind::Single,
+                    2 | 3 => EncoderKind::Quadrature,
+                    _ => {
+                        return Err(Error::OutOfRange {
+                            id: cmd,
+                            field: "type",
+                        })
+                    }
+                };
+                let pin_a = r.pin("pin_a")?;
+                let pin_b = r.pin("pin_b")?;
+                ensure(kind == EncoderKind::Quadrature || pin_b == 0, cmd, "pin_b")?;
+                let pulls = if dialect == Dialect::Mirte13 {
+                    let bits = r.u8()?;
+                    ensure(bits <= 3, cmd, "pulls")?;
+                    Some(Pulls {
+                        up: bits & 1 != 0,
+                        down: bits & 2 != 0,
+                    })
+                } else {
+                    None
+                };
+                Command::EncoderNew {
+                    kind,
+                    pin_a,
+                    pin_b,
+                    pulls,
+                }
+            }
+            id::SENSOR_NEW => Command::SensorNew(SensorNew::parse(r, dialect)?),
+            id::MODULE_NEW => Command::ModuleNew(ModuleNew::parse(r)?),
+            id::MODULE_DATA => {
+                let module_num = r.u8()?;
+                let data = r.rest();
+                ensure(!data.is_empty(), cmd, "data")?;
+                Command::ModuleData { module_num, data }
+            }
+            _ => return Err(Error::UnknownId { id: cmd }),
+        }),
+    )
 }
 
 impl<'a> Command<'a> {

@@ -253,14 +253,86 @@ impl Visit for MessageBuf {
     }
 }
 
+/// A command's payload fields, from the command table: the `plain` rows'
+/// fields by their kind, the `custom` rows by [`CommandView::visit_custom`].
+macro_rules! command_fields {
+    ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
+        impl CommandView<'_, '_> {
+            fn payload(&self, w: &mut W<'_>) {
+                match *self.command {
+                    $($(Command::$v { .. })|+ => {
+                        visit_row!(self, w, $codec $($p)? { $($body)* })
+                    })*
+                }
+            }
+        }
+    };
+}
+
+/// Visit a row's payload.
+macro_rules! visit_row {
+    ($view:ident, $w:ident, custom { $($decl:tt)* }) => {
+        $view.visit_custom($w)
+    };
+    ($view:ident, $w:ident, plain $p:ident {}) => {{}};
+    ($view:ident, $w:ident, plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
+        if let Command::$p { $($f),* } = *$view.command {
+            $(visit_field!($w, $f, $key, $kind $(($($arg)*))?);)*
+        }
+    };
+}
+
+/// Visit one field of a `plain` row.
+macro_rules! visit_field {
+    ($w:ident, $f:ident, $key:literal, counted_pins $args:tt) => {
+        $w.bytes($key, $f)
+    };
+    ($w:ident, $f:ident, $key:literal, trailing_u16_pair($a:literal, $b:literal)) => {
+        if let Some((a, b)) = $f {
+            $w.u($a, a);
+            $w.u($b, b);
+        }
+    };
+    ($w:ident, $f:ident, $key:literal, counted $args:tt) => {
+        $w.bytes($key, $f)
+    };
+    ($w:ident, $f:ident, $key:literal, trailing_flag) => {
+        if let Some(flag) = $f {
+            $w.flag($key, flag);
+        }
+    };
+    ($w:ident, $f:ident, $key:literal, flag) => {
+        $w.flag($key, $f)
+    };
+    ($w:ident, $f:ident, $key:literal, level) => {
+        $w.level($key, $f)
+    };
+    ($w:ident, $f:ident, $key:literal, rgb) => {
+        rgb($w, $f)
+    };
+    // u8, u16, pin, range
+    ($w:ident, $f:ident, $key:literal, $kind:ident $($args:tt)?) => {
+        $w.u($key, $f)
+    };
+}
+
+super::table::command_table!(command_fields);
+
 impl Visit for CommandView<'_, '_> {
     fn visit(&self, w: &mut W<'_>) {
         w.s("type", self.command.name());
         if let Some(also) = self.also {
             w.s("also", also);
         }
+        self.payload(w);
+    }
+}
+
+impl CommandView<'_, '_> {
+    /// The payload fields of a `custom` row of the command table.
+    fn visit_custom(&self, w: &mut W<'_>) {
         match *self.command {
-            Command::LoopBack { byte } => w.u("byte", byte),
             Command::SetPinMode { pin, mode } => {
                 w.u("pin", pin);
                 w.s("mode", mode.name());
@@ -290,32 +362,6 @@ impl Visit for CommandView<'_, '_> {
                     | ModifyReporting::DisableAnalog { pin }
                     | ModifyReporting::DisableDigital { pin } => w.u("pin", pin),
                 }
-            }
-            Command::GetFirmwareVersion
-            | Command::GetUniqueId
-            | Command::StopAllReports
-            | Command::EnableAllReports
-            | Command::ResetData
-            | Command::ResetBoard
-            | Command::ShowNeoPixels
-            | Command::GetId
-            | Command::BootloaderReset => {}
-            Command::ServoAttach { pin, pulse_range } => {
-                w.u("pin", pin);
-                if let Some((min_us, max_us)) = pulse_range {
-                    w.u("min_us", min_us);
-                    w.u("max_us", max_us);
-                }
-            }
-            Command::ServoWrite { pin, pulse_us } => {
-                w.u("pin", pin);
-                w.u("pulse_us", pulse_us);
-            }
-            Command::ServoDetach { pin } | Command::DhtNew { pin } => w.u("pin", pin),
-            Command::I2cBegin { port, sda, scl } => {
-                w.u("port", port);
-                w.u("sda", sda);
-                w.u("scl", scl);
             }
             Command::I2cRead {
                 port,
@@ -369,80 +415,6 @@ impl Visit for CommandView<'_, '_> {
                 w.u("no_stop", no_stop);
                 w.bytes("data", data);
             }
-            Command::SonarNew { trig, echo } => {
-                w.u("trig", trig);
-                w.u("echo", echo);
-            }
-            Command::InitNeoPixels {
-                pin,
-                count,
-                rgb: color,
-            } => {
-                w.u("pin", pin);
-                w.u("count", count);
-                rgb(w, color);
-            }
-            Command::SetNeoPixel {
-                index,
-                rgb: color,
-                auto_show,
-            } => {
-                w.u("index", index);
-                rgb(w, color);
-                w.flag("auto_show", auto_show);
-            }
-            Command::ClearAllNeoPixels { auto_show } => {
-                if let Some(auto_show) = auto_show {
-                    w.flag("auto_show", auto_show);
-                }
-            }
-            Command::FillNeoPixels {
-                rgb: color,
-                auto_show,
-            } => {
-                rgb(w, color);
-                w.flag("auto_show", auto_show);
-            }
-            Command::SpiInit {
-                port,
-                pin_a,
-                pin_b,
-                clk,
-                freq_hz,
-                cs_pins,
-            } => {
-                w.u("port", port);
-                w.u("pin_a", pin_a);
-                w.u("pin_b", pin_b);
-                w.u("clk", clk);
-                w.u("freq_hz", freq_hz);
-                w.bytes("cs_pins", cs_pins);
-            }
-            Command::SpiWrite { port, data } => {
-                w.u("port", port);
-                w.bytes("data", data);
-            }
-            Command::SpiRead { port, len, tx_fill } => {
-                w.u("port", port);
-                w.u("n", len);
-                w.u("tx_fill", tx_fill);
-            }
-            Command::SpiSetFormat {
-                port,
-                data_bits,
-                cpol,
-                cpha,
-            } => {
-                w.u("port", port);
-                w.u("data_bits", data_bits);
-                w.level("cpol", cpol);
-                w.level("cpha", cpha);
-            }
-            Command::SpiCsControl { cs_pin, high } => {
-                w.u("cs_pin", cs_pin);
-                w.level("level", high);
-            }
-            Command::SetScanDelay { delay_ms } => w.u("delay_ms", delay_ms),
             Command::EncoderNew {
                 kind,
                 pin_a,
@@ -487,7 +459,6 @@ impl Visit for CommandView<'_, '_> {
                 w.s("sensor_type", sensor_type.name());
                 w.bytes("settings", &settings);
             }
-            Command::Ping { counter } => w.u("counter", counter),
             Command::ModuleNew(ModuleNew::Check { module_type }) => {
                 w.s("subtype", "check");
                 w.type_byte("module_type", module_type, ModuleType::NAMES);
@@ -511,8 +482,8 @@ impl Visit for CommandView<'_, '_> {
                     None => w.bytes("data", data),
                 }
             }
-            Command::SetId { id } => w.u("id", id),
-            Command::FeatureCheck { msg_type } => w.u("msg_type", msg_type),
+            // The `plain` rows: visited by `payload`.
+            _ => {}
         }
     }
 }

@@ -13,9 +13,9 @@ use super::error::Error;
 use super::fast;
 use super::module::{ModuleNew, ModuleType};
 use super::report::{
-    parse_report_full, parse_report_with, report_header_len, report_known, report_len_ok, Report,
+    parse_report_full, parse_report_with, report_header_len, report_len_ok, Report,
 };
-use super::wire::{command_id, report_id, MAX_COMMAND_LEN};
+use super::wire::{command_id, report_id, report_known, MAX_COMMAND_LEN};
 
 mod sealed {
     pub trait Sealed {}

@@ -206,6 +206,42 @@
 //! let on = Command::DigitalWrite { pin: 25, value: true };
 //! assert_eq!(on.to_string(), "digital_write pin=25 value=1");
 //! ```
+//!
+//! # Adding a command
+//!
+//! Every command is one row of the command table (`src/telemetrix/table.rs`,
+//! a `macro_rules!` table): the [`Command`] variant and its docs, the id and
+//! its [`command_id`] constant, the `type` name, the dialects, the `LEN` range
+//! and the payload. The enum, the ids, the dialect and `LEN` tables, encode,
+//! parse, the serde fields, the names and `Display` are expanded from it. To
+//! add a command with a fixed layout:
+//!
+//! 1. Add its row to `command_table!`, at its id (the rows are in id order,
+//!    which the build checks):
+//!    ```text
+//!    /// 39 SET_LED: the board LED on or off (mirte 1.3).
+//!    39 SET_LED "set_led" [SetLed] in [Mirte13] len (2, 2)
+//!        plain SetLed {
+//!            /// Level, `true` for on.
+//!            on: level "level",
+//!        };
+//!    ```
+//!    The field kinds (`u8`, `pin`, `range(lo, hi)`, `u16`, `flag`, `level`,
+//!    `rgb`) say the Rust type, the check on the wire, the writer and the JSON
+//!    form; the string is the field's JSON key.
+//! 2. Add its golden vector to `golden_commands_mirte13` in
+//!    `tests/telemetrix.rs` (frame ↔ command) and its line to `CASES` in
+//!    `tests/schema_telemetrix.rs` (frame ↔ JSON line).
+//!
+//! A command whose layout depends on its content or its dialect is a
+//! `custom` row: the row carries its variants, and its arms are written in
+//! `parse_payload` and `write_custom` (`command.rs`), `visit_custom`
+//! (`fields.rs`) and `read_command` (`schema.rs`). Reports have a table of
+//! their own in the same file (`report_table!`: the id, its [`report_id`]
+//! constant, the dialects, the `type` names and their variants), which gives
+//! the report ids, the report dialect table, [`Report::NAMES`],
+//! [`Report::name`] and [`Report::id`]; their layouts are still written out
+//! in `report.rs`, `fast.rs`, `fields.rs` and `schema.rs`.
 
 mod buf;
 mod command;
@@ -222,6 +258,7 @@ mod report;
 #[cfg(feature = "serde")]
 mod schema;
 mod sensor;
+mod table;
 mod wire;
 
 pub use buf::{CommandBuf, Message, MessageBuf, ReportBuf};

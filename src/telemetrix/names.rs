@@ -182,116 +182,49 @@ impl ModifyReporting {
     }
 }
 
-impl Command<'_> {
-    /// Every command `type`, in id order (ids 0..=38). The command with id
-    /// 37 is `feature_request` (the report is `feature_check`), so that
-    /// every name names one direction.
-    pub const NAMES: &'static [&'static str] = &[
-        "serial_loop_back",
-        "set_pin_mode",
-        "digital_write",
-        "pwm_write",
-        "modify_reporting",
-        "get_firmware_version",
-        "get_pico_unique_id",
-        "servo_attach",
-        "servo_write",
-        "servo_detach",
-        "i2c_begin",
-        "i2c_read",
-        "i2c_write",
-        "sonar_new",
-        "dht_new",
-        "stop_all_reports",
-        "enable_all_reports",
-        "reset_data",
-        "reset_board",
-        "initialize_neo_pixels",
-        "show_neo_pixels",
-        "set_neo_pixel",
-        "clear_all_neo_pixels",
-        "fill_neo_pixels",
-        "spi_init",
-        "spi_write_blocking",
-        "spi_read_blocking",
-        "spi_set_format",
-        "spi_cs_control",
-        "set_scan_delay",
-        "encoder_new",
-        "sensor_new",
-        "ping",
-        "module_new",
-        "module_data",
-        "get_id",
-        "set_id",
-        "feature_request",
-        "bootloader_reset",
-    ];
+/// The command names, from the command table.
+macro_rules! command_names {
+    ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
+        impl Command<'_> {
+            /// Every command `type`, in id order (ids 0..=38). The command with id
+            /// 37 is `feature_request` (the report is `feature_check`), so that
+            /// every name names one direction.
+            pub const NAMES: &'static [&'static str] = &[$($name),*];
+        }
+    };
+}
 
+super::table::command_table!(command_names);
+
+impl Command<'_> {
     /// This command's `type`.
     pub const fn name(&self) -> &'static str {
         Self::NAMES[self.id() as usize]
     }
 }
 
-impl Report<'_> {
-    /// Every report `type` (upstream's report 8 is `i2c_write_failed`);
-    /// `unknown_report` last, for a lenient framing's unknown ids.
-    pub const NAMES: &'static [&'static str] = &[
-        "serial_loop_back_report",
-        "digital_report",
-        "analog_report",
-        "firmware_version",
-        "pico_unique_id",
-        "i2c_write_report",
-        "i2c_write_failed",
-        "i2c_read_failed",
-        "i2c_read_report",
-        "sonar_distance",
-        "dht_report",
-        "spi_report",
-        "encoder_report",
-        "sensor_report",
-        "sensor_main_report",
-        "pong",
-        "module_main_report",
-        "module_report",
-        "get_id_report",
-        "set_id_report",
-        "feature_check",
-        "debug_print",
-        "unknown_report",
-    ];
+/// The report names, from the report table.
+macro_rules! report_names {
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
+        { $($name:literal [$($v:ident),+]),+ };)*) => {
+        impl Report<'_> {
+            /// Every report `type` (upstream's report 8 is `i2c_write_failed`);
+            /// `unknown_report` last, for a lenient framing's unknown ids.
+            pub const NAMES: &'static [&'static str] = &[$($($name,)+)* "unknown_report"];
 
-    /// This report's `type`.
-    pub const fn name(&self) -> &'static str {
-        Self::NAMES[match self {
-            Report::LoopBack { .. } => 0,
-            Report::Digital { .. } => 1,
-            Report::Analog { .. } => 2,
-            Report::FirmwareVersion { .. } => 3,
-            Report::UniqueId { .. } => 4,
-            Report::I2cWrite { .. } => 5,
-            Report::I2cWriteFailed { .. } => 6,
-            Report::I2cReadFailed { .. } => 7,
-            Report::I2cRead { .. } | Report::I2cReadUpstream { .. } => 8,
-            Report::Sonar(_) => 9,
-            Report::Dht { .. } => 10,
-            Report::Spi { .. } => 11,
-            Report::Encoder { .. } => 12,
-            Report::Sensor { .. } => 13,
-            Report::SensorSupported { .. } => 14,
-            Report::Pong { .. } => 15,
-            Report::ModuleSupported { .. } => 16,
-            Report::Module { .. } => 17,
-            Report::Id { .. } => 18,
-            Report::IdSet { .. } => 19,
-            Report::Feature { .. } => 20,
-            Report::Debug { .. } => 21,
-            Report::Unknown { .. } => 22,
-        }]
-    }
+            /// This report's `type`.
+            pub const fn name(&self) -> &'static str {
+                match self {
+                    $($($(Report::$v { .. })|+ => $name,)+)*
+                    Report::Unknown { .. } => "unknown_report",
+                }
+            }
+        }
+    };
 }
+
+super::table::report_table!(report_names);
 
 /// `a` then `b`, in a const context.
 const fn concat<const N: usize>(a: &[&'static str], b: &[&'static str]) -> [&'static str; N] {

@@ -6,36 +6,13 @@ use super::fast;
 use super::module::{module_report_len_ok, ModuleReport};
 use super::quirk::report_quirk;
 use super::sensor::{SensorReading, SensorType};
-use super::wire::{analog_pin_ok, report_id, split_frame, Reader, Writer, MAX_REPORT_FRAME};
+use super::wire::{
+    analog_pin_ok, report_id, report_known, split_frame, Reader, Writer, MAX_REPORT_FRAME,
+};
 use crate::encode::check_room;
 use crate::{Encode, EncodeError};
 
 use report_id as id;
-
-/// Whether `dialect` defines report `id` (and robowire covers it there).
-pub(crate) const fn report_known(dialect: Dialect, id: u8) -> bool {
-    match id {
-        id::SERIAL_LOOP_BACK
-        | id::DIGITAL
-        | id::ANALOG
-        | id::FIRMWARE
-        | id::UNIQUE_ID
-        | id::I2C_WRITE
-        | id::I2C_READ
-        | id::SONAR
-        | id::DHT
-        | id::SPI => true,
-        id::I2C_READ_FAILED | id::ENCODER | id::PONG | id::DEBUG_PRINT => dialect.is_mirte(),
-        id::SENSOR => dialect.is_mirte(),
-        id::SENSOR_MAIN
-        | id::MODULE_MAIN
-        | id::MODULE
-        | id::GET_ID
-        | id::SET_ID
-        | id::FEATURE_CHECK => matches!(dialect, Dialect::Mirte13),
-        _ => false,
-    }
-}
 
 /// Largest I2C read (spec §4, command 11).
 const I2C_READ_MAX: u8 = 57;
@@ -456,33 +433,21 @@ pub enum Report<'a> {
     },
 }
 
+/// `Report::id`'s `match`, from the report table.
+macro_rules! report_id_match {
+    ([$report:ident] $($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
+        { $($name:literal [$($v:ident),+]),+ };)*) => {
+        match $report {
+            $($($(Report::$v { .. })|+)|+ => $n,)*
+            Report::Unknown { id, .. } => *id,
+        }
+    };
+}
+
 impl Report<'_> {
     /// The report id.
     pub const fn id(&self) -> u8 {
-        match self {
-            Report::LoopBack { .. } => id::SERIAL_LOOP_BACK,
-            Report::Digital { .. } => id::DIGITAL,
-            Report::Analog { .. } => id::ANALOG,
-            Report::FirmwareVersion { .. } => id::FIRMWARE,
-            Report::UniqueId { .. } => id::UNIQUE_ID,
-            Report::I2cWrite { .. } | Report::I2cWriteFailed { .. } => id::I2C_WRITE,
-            Report::I2cReadFailed { .. } => id::I2C_READ_FAILED,
-            Report::I2cRead { .. } | Report::I2cReadUpstream { .. } => id::I2C_READ,
-            Report::Sonar(_) => id::SONAR,
-            Report::Dht { .. } => id::DHT,
-            Report::Spi { .. } => id::SPI,
-            Report::Encoder { .. } => id::ENCODER,
-            Report::Sensor { .. } => id::SENSOR,
-            Report::SensorSupported { .. } => id::SENSOR_MAIN,
-            Report::Pong { .. } => id::PONG,
-            Report::ModuleSupported { .. } => id::MODULE_MAIN,
-            Report::Module { .. } => id::MODULE,
-            Report::Id { .. } => id::GET_ID,
-            Report::IdSet { .. } => id::SET_ID,
-            Report::Feature { .. } => id::FEATURE_CHECK,
-            Report::Debug { .. } => id::DEBUG_PRINT,
-            Report::Unknown { id, .. } => *id,
-        }
+        super::table::report_table!(report_id_match, self)
     }
 }
 

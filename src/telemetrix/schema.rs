@@ -631,6 +631,102 @@ fn rgb(f: &mut Fields<'_>) -> Result<Rgb, String> {
     })
 }
 
+/// The members of a `plain` row's command, from the command table (a
+/// `custom` row's are read by [`read_command`]).
+macro_rules! command_reader {
+    ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
+        /// Whether `kind` is a `plain` row's command.
+        fn is_plain(kind: &str) -> bool {
+            match kind {
+                $($name => row_is_plain!($codec),)*
+                _ => false,
+            }
+        }
+
+        /// The members of a `plain` row's command `kind`.
+        fn read_plain<'b>(
+            kind: &str,
+            f: &mut Fields<'_>,
+            buf: &'b mut Vec<u8>,
+        ) -> Result<Command<'b>, String> {
+            Ok(match kind {
+                $($name => read_row!(f, buf, $codec $($p)? { $($body)* }),)*
+                other => return Err(format!("unknown type `{other}`")),
+            })
+        }
+    };
+}
+
+/// Whether a row is `plain`.
+macro_rules! row_is_plain {
+    (plain) => {
+        true
+    };
+    (custom) => {
+        false
+    };
+}
+
+/// Read a row's members (a `custom` row's are read by [`read_command`]).
+macro_rules! read_row {
+    ($fields:ident, $buf:ident, custom { $($decl:tt)* }) => {
+        return Err(String::from("a custom row is read by read_command"))
+    };
+    ($fields:ident, $buf:ident, plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
+        Command::$p { $($f: read_member!($fields, $buf, $key, $kind $(($($arg)*))?),)* }
+    };
+}
+
+/// Read one member of a `plain` row.
+macro_rules! read_member {
+    ($fields:ident, $buf:ident, $key:literal, counted_pins $args:tt) => {
+        bytes_in($fields, $key, $buf)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, nonzero_u32) => {
+        $fields.int($key, 1, i64::from(u32::MAX))? as u32
+    };
+    ($fields:ident, $buf:ident, $key:literal, trailing_u16_pair($a:literal, $b:literal)) => {
+        match ($fields.has($a), $fields.has($b)) {
+            (false, false) => None,
+            _ => Some((u16_($fields, $a)?, u16_($fields, $b)?)),
+        }
+    };
+    ($fields:ident, $buf:ident, $key:literal, counted($count:literal)) => {
+        bytes_in($fields, $key, $buf)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, trailing_flag) => {
+        if $fields.has($key) {
+            Some(flag($fields, $key)?)
+        } else {
+            None
+        }
+    };
+    ($fields:ident, $buf:ident, $key:literal, u8) => {
+        u8_($fields, $key)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, u16) => {
+        u16_($fields, $key)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, pin) => {
+        pin_($fields, $key)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, flag) => {
+        flag($fields, $key)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, level) => {
+        level($fields, $key)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, rgb) => {
+        rgb($fields)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, range($lo:literal, $hi:literal)) => {
+        ranged($fields, $key, $lo, $hi)?
+    };
+}
+
+super::table::command_table!(command_reader);
+
 /// The members of a command `kind` (one of [`Command::NAMES`]).
 fn read_command<'b>(
     kind: &str,
@@ -639,11 +735,11 @@ fn read_command<'b>(
     buf: &'b mut Vec<u8>,
     raw: &mut Raw,
 ) -> Result<Command<'b>, String> {
+    if is_plain(kind) {
+        return read_plain(kind, f, buf);
+    }
     let upstream = dialect == Dialect::Upstream11;
     Ok(match kind {
-        "serial_loop_back" => Command::LoopBack {
-            byte: u8_(f, "byte")?,
-        },
         "set_pin_mode" => {
             let mode = name(f, "mode", PinMode::NAMES)?;
             let pin = if mode == 5 {
@@ -710,28 +806,6 @@ fn read_command<'b>(
                 },
             })
         }
-        "get_firmware_version" => Command::GetFirmwareVersion,
-        "get_pico_unique_id" => Command::GetUniqueId,
-        "servo_attach" => {
-            let pin = pin_(f, "pin")?;
-            let pulse_range = match (f.has("min_us"), f.has("max_us")) {
-                (false, false) => None,
-                _ => Some((u16_(f, "min_us")?, u16_(f, "max_us")?)),
-            };
-            Command::ServoAttach { pin, pulse_range }
-        }
-        "servo_write" => Command::ServoWrite {
-            pin: pin_(f, "pin")?,
-            pulse_us: u16_(f, "pulse_us")?,
-        },
-        "servo_detach" => Command::ServoDetach {
-            pin: pin_(f, "pin")?,
-        },
-        "i2c_begin" => Command::I2cBegin {
-            port: ranged(f, "port", 0, 1)?,
-            sda: pin_(f, "sda")?,
-            scl: pin_(f, "scl")?,
-        },
         "i2c_read" if upstream => Command::I2cReadUpstream {
             port: ranged(f, "port", 0, 1)?,
             addr: ranged(f, "addr", 0, 0x7f)?,
@@ -759,69 +833,6 @@ fn read_command<'b>(
             msg_id: u8_(f, "msg_id")?,
             no_stop: u8_(f, "no_stop")?,
             data: bytes_in(f, "data", buf)?,
-        },
-        "sonar_new" => Command::SonarNew {
-            trig: pin_(f, "trig")?,
-            echo: pin_(f, "echo")?,
-        },
-        "dht_new" => Command::DhtNew {
-            pin: pin_(f, "pin")?,
-        },
-        "stop_all_reports" => Command::StopAllReports,
-        "enable_all_reports" => Command::EnableAllReports,
-        "reset_data" => Command::ResetData,
-        "reset_board" => Command::ResetBoard,
-        "initialize_neo_pixels" => Command::InitNeoPixels {
-            pin: pin_(f, "pin")?,
-            count: ranged(f, "count", 0, 100)?,
-            rgb: rgb(f)?,
-        },
-        "show_neo_pixels" => Command::ShowNeoPixels,
-        "set_neo_pixel" => Command::SetNeoPixel {
-            index: ranged(f, "index", 0, 99)?,
-            rgb: rgb(f)?,
-            auto_show: flag(f, "auto_show")?,
-        },
-        "clear_all_neo_pixels" => Command::ClearAllNeoPixels {
-            auto_show: if f.has("auto_show") {
-                Some(flag(f, "auto_show")?)
-            } else {
-                None
-            },
-        },
-        "fill_neo_pixels" => Command::FillNeoPixels {
-            rgb: rgb(f)?,
-            auto_show: flag(f, "auto_show")?,
-        },
-        "spi_init" => Command::SpiInit {
-            port: ranged(f, "port", 0, 1)?,
-            pin_a: pin_(f, "pin_a")?,
-            pin_b: pin_(f, "pin_b")?,
-            clk: pin_(f, "clk")?,
-            freq_hz: f.int("freq_hz", 1, i64::from(u32::MAX))? as u32,
-            cs_pins: bytes_in(f, "cs_pins", buf)?,
-        },
-        "spi_write_blocking" => Command::SpiWrite {
-            port: ranged(f, "port", 0, 1)?,
-            data: bytes_in(f, "data", buf)?,
-        },
-        "spi_read_blocking" => Command::SpiRead {
-            port: ranged(f, "port", 0, 1)?,
-            len: ranged(f, "n", 0, 60)?,
-            tx_fill: u8_(f, "tx_fill")?,
-        },
-        "spi_set_format" => Command::SpiSetFormat {
-            port: ranged(f, "port", 0, 1)?,
-            data_bits: ranged(f, "data_bits", 4, 16)?,
-            cpol: level(f, "cpol")?,
-            cpha: level(f, "cpha")?,
-        },
-        "spi_cs_control" => Command::SpiCsControl {
-            cs_pin: pin_(f, "cs_pin")?,
-            high: level(f, "level")?,
-        },
-        "set_scan_delay" => Command::SetScanDelay {
-            delay_ms: u8_(f, "delay_ms")?,
         },
         "encoder_new" => Command::EncoderNew {
             kind: if raw.is(Quirk::EncoderTypeNot1Or2) {
@@ -881,9 +892,6 @@ fn read_command<'b>(
                 settings: f.array("settings", byte)?,
             },
         }),
-        "ping" => Command::Ping {
-            counter: u8_(f, "counter")?,
-        },
         "module_new" => Command::ModuleNew(match name(f, "subtype", &["check", "add"])? {
             0 => ModuleNew::Check {
                 module_type: type_byte(f, "module_type", ModuleType::NAMES)?,
@@ -909,12 +917,6 @@ fn read_command<'b>(
             };
             Command::ModuleData { module_num, data }
         }
-        "get_id" => Command::GetId,
-        "set_id" => Command::SetId { id: u8_(f, "id")? },
-        "feature_request" => Command::FeatureCheck {
-            msg_type: u8_(f, "msg_type")?,
-        },
-        "bootloader_reset" => Command::BootloaderReset,
         other => return Err(format!("unknown type `{other}`")),
     })
 }

@@ -33,133 +33,57 @@ pub(crate) const fn analog_pin_ok(dialect: Dialect, pin: u8) -> bool {
     }
 }
 
-/// Command ids (host → Pico), mirte firmware 1.3 numbering (spec §4).
-pub mod command_id {
-    /// SERIAL_LOOP_BACK.
-    pub const SERIAL_LOOP_BACK: u8 = 0;
-    /// SET_PIN_MODE.
-    pub const SET_PIN_MODE: u8 = 1;
-    /// DIGITAL_WRITE.
-    pub const DIGITAL_WRITE: u8 = 2;
-    /// PWM_WRITE.
-    pub const PWM_WRITE: u8 = 3;
-    /// MODIFY_REPORTING.
-    pub const MODIFY_REPORTING: u8 = 4;
-    /// GET_FIRMWARE_VERSION.
-    pub const GET_FIRMWARE_VERSION: u8 = 5;
-    /// GET_PICO_UNIQUE_ID.
-    pub const GET_PICO_UNIQUE_ID: u8 = 6;
-    /// SERVO_ATTACH.
-    pub const SERVO_ATTACH: u8 = 7;
-    /// SERVO_WRITE.
-    pub const SERVO_WRITE: u8 = 8;
-    /// SERVO_DETACH.
-    pub const SERVO_DETACH: u8 = 9;
-    /// I2C_BEGIN.
-    pub const I2C_BEGIN: u8 = 10;
-    /// I2C_READ.
-    pub const I2C_READ: u8 = 11;
-    /// I2C_WRITE.
-    pub const I2C_WRITE: u8 = 12;
-    /// SONAR_NEW.
-    pub const SONAR_NEW: u8 = 13;
-    /// DHT_NEW.
-    pub const DHT_NEW: u8 = 14;
-    /// STOP_ALL_REPORTS.
-    pub const STOP_ALL_REPORTS: u8 = 15;
-    /// ENABLE_ALL_REPORTS.
-    pub const ENABLE_ALL_REPORTS: u8 = 16;
-    /// RESET_DATA.
-    pub const RESET_DATA: u8 = 17;
-    /// RESET_BOARD.
-    pub const RESET_BOARD: u8 = 18;
-    /// INITIALIZE_NEO_PIXELS.
-    pub const INITIALIZE_NEO_PIXELS: u8 = 19;
-    /// SHOW_NEO_PIXELS.
-    pub const SHOW_NEO_PIXELS: u8 = 20;
-    /// SET_NEO_PIXEL.
-    pub const SET_NEO_PIXEL: u8 = 21;
-    /// CLEAR_ALL_NEO_PIXELS.
-    pub const CLEAR_ALL_NEO_PIXELS: u8 = 22;
-    /// FILL_NEO_PIXELS.
-    pub const FILL_NEO_PIXELS: u8 = 23;
-    /// SPI_INIT.
-    pub const SPI_INIT: u8 = 24;
-    /// SPI_WRITE_BLOCKING.
-    pub const SPI_WRITE_BLOCKING: u8 = 25;
-    /// SPI_READ_BLOCKING.
-    pub const SPI_READ_BLOCKING: u8 = 26;
-    /// SPI_SET_FORMAT.
-    pub const SPI_SET_FORMAT: u8 = 27;
-    /// SPI_CS_CONTROL.
-    pub const SPI_CS_CONTROL: u8 = 28;
-    /// SET_SCAN_DELAY.
-    pub const SET_SCAN_DELAY: u8 = 29;
-    /// ENCODER_NEW.
-    pub const ENCODER_NEW: u8 = 30;
-    /// SENSOR_NEW.
-    pub const SENSOR_NEW: u8 = 31;
-    /// PING.
-    pub const PING: u8 = 32;
-    /// MODULE_NEW.
-    pub const MODULE_NEW: u8 = 33;
-    /// MODULE_DATA.
-    pub const MODULE_DATA: u8 = 34;
-    /// GET_ID.
-    pub const GET_ID: u8 = 35;
-    /// SET_ID.
-    pub const SET_ID: u8 = 36;
-    /// FEATURE_CHECK.
-    pub const FEATURE_CHECK: u8 = 37;
-    /// BOOTLOADER_RESET.
-    pub const BOOTLOADER_RESET: u8 = 38;
+/// The id constants, from the command table.
+macro_rules! command_ids {
+    ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
+        /// Command ids (host → Pico), mirte firmware 1.3 numbering (spec §4).
+        pub mod command_id {
+            $(
+                #[doc = concat!(stringify!($id), ".")]
+                pub const $id: u8 = $n;
+            )*
+        }
+
+        // The rows are in id order, one per id, so that an id indexes the
+        // name table.
+        const _: () = {
+            let ids = [$($n),*];
+            let mut i = 0;
+            while i < ids.len() {
+                assert!(ids[i] as usize == i, "command table rows out of id order");
+                i += 1;
+            }
+        };
+    };
 }
 
-/// Report ids (Pico → host), mirte firmware 1.3 numbering (spec §5).
-pub mod report_id {
-    /// SERIAL_LOOP_BACK_REPORT.
-    pub const SERIAL_LOOP_BACK: u8 = 0;
-    /// DIGITAL_REPORT.
-    pub const DIGITAL: u8 = 2;
-    /// ANALOG_REPORT.
-    pub const ANALOG: u8 = 3;
-    /// FIRMWARE_REPORT.
-    pub const FIRMWARE: u8 = 5;
-    /// REPORT_PICO_UNIQUE_ID.
-    pub const UNIQUE_ID: u8 = 6;
-    /// I2C_WRITE_REPORT (upstream: I2C_WRITE_FAILED).
-    pub const I2C_WRITE: u8 = 8;
-    /// I2C_READ_FAILED.
-    pub const I2C_READ_FAILED: u8 = 9;
-    /// I2C_READ_REPORT.
-    pub const I2C_READ: u8 = 10;
-    /// SONAR_DISTANCE.
-    pub const SONAR: u8 = 11;
-    /// DHT_REPORT.
-    pub const DHT: u8 = 12;
-    /// SPI_REPORT.
-    pub const SPI: u8 = 13;
-    /// ENCODER_REPORT.
-    pub const ENCODER: u8 = 14;
-    /// SENSOR_REPORT.
-    pub const SENSOR: u8 = 20;
-    /// SENSOR_MAIN_REPORT.
-    pub const SENSOR_MAIN: u8 = 21;
-    /// PONG_REPORT.
-    pub const PONG: u8 = 32;
-    /// MODULE_MAIN_REPORT.
-    pub const MODULE_MAIN: u8 = 33;
-    /// MODULE_REPORT.
-    pub const MODULE: u8 = 34;
-    /// GET_ID_REPORT.
-    pub const GET_ID: u8 = 35;
-    /// SET_ID_REPORT.
-    pub const SET_ID: u8 = 36;
-    /// FEATURE_CHECK.
-    pub const FEATURE_CHECK: u8 = 37;
-    /// DEBUG_PRINT.
-    pub const DEBUG_PRINT: u8 = 99;
+super::table::command_table!(command_ids);
+
+/// The report id constants and the report dialect table, from the report
+/// table.
+macro_rules! report_ids {
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
+        { $($name:literal [$($v:ident),+]),+ };)*) => {
+        /// Report ids (Pico → host), mirte firmware 1.3 numbering (spec §5).
+        pub mod report_id {
+            $(
+                $(#[$m])*
+                pub const $id: u8 = $n;
+            )*
+        }
+
+        /// Whether `dialect` defines report `id` (and robowire covers it there).
+        pub(crate) const fn report_known(dialect: Dialect, id: u8) -> bool {
+            match id {
+                $($n => matches!(dialect, $(Dialect::$d)|+),)*
+                _ => false,
+            }
+        }
+    };
 }
+
+super::table::report_table!(report_ids);
 
 /// Split a frame into `LEN`, id and payload, checking that `LEN` matches.
 pub(crate) fn split_frame(frame: &[u8]) -> Result<(u8, u8, &[u8]), Error> {
