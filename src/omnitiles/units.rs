@@ -118,21 +118,28 @@ pub fn duty_to_velocity(duty: f32) -> i8 {
 /// A raw position or ADC reading (0..=4095) in millimetres along the stroke,
 /// as the SDK computes it (`raw / 4095 · stroke`, see [`adc_to_mm_f64`])
 /// and rounded once to `f32`. The tile's firmware sends the raw reading and
-/// converts nothing, so the SDK's number is the reference; computed in `f32`
-/// throughout, the result was one ulp off it for a quarter of all inputs.
+/// converts nothing, so the SDK's number is the reference.
+///
+/// It stays in `f32`, for firmware without a double-precision FPU: `raw ·
+/// stroke` is an integer below 2²⁴, so exact in `f32`, and one IEEE division
+/// rounds the exact quotient once. That is the SDK's number: its `f64`
+/// result is within a few `f64` ulps of the quotient, and a quotient `n /
+/// 4095` is never that close to a midpoint between two `f32`s. Dividing
+/// first, as 0.2.0 did, rounded twice and was one ulp off for a quarter of
+/// all inputs. A test compares every input with [`adc_to_mm_f64`].
 ///
 /// ```
 /// use robowire::omnitiles::{units::adc_to_mm, Motor};
 /// assert_eq!(adc_to_mm(Motor::M1, 2000), (2000.0_f64 / 4095.0 * 150.0) as f32);
 /// ```
 pub fn adc_to_mm(motor: Motor, raw: u16) -> f32 {
-    adc_to_mm_f64(motor, raw) as f32
+    f32::from(raw) * motor.stroke_mm() / f32::from(ADC_FULL_SCALE)
 }
 
 /// A raw position or ADC reading in millimetres exactly as the SDK computes
 /// it: `raw / 4095 * stroke` in `f64` (Python's float), bit for bit. On a
 /// target without a double-precision FPU this links the soft-float `f64`
-/// division, as [`adc_to_mm`] does.
+/// division; [`adc_to_mm`] is the same number as an `f32` without it.
 pub fn adc_to_mm_f64(motor: Motor, raw: u16) -> f64 {
     f64::from(raw) / f64::from(ADC_FULL_SCALE) * f64::from(motor.stroke_mm())
 }
