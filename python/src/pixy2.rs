@@ -100,7 +100,7 @@ fn encode<'py>(message: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyBytes>> {
     // Every line the decoder prints encodes: a marked quirk (sigmap 0) is
     // the opt-in, as in `robowire encode pixy2`.
     encode_with(message, |m: &Envelope<MessageBuf>| {
-        encode_frame(&m.clone().even_if_refused())
+        encode_frame(&(*m).even_if_refused())
     })
 }
 
