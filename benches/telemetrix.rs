@@ -6,6 +6,11 @@
 //! * `decode/reports`: stream-decode the whole buffer in one call, typed,
 //!   every message through `black_box`, summing the report ids;
 //! * `decode/reports_chunk64`: the same, fed in 64-byte chunks;
+//! * `decode/reports_owned`: the owned path of a host that keeps its
+//!   frames: `feed` yields each report as a [`ReportBuf`] (its bytes
+//!   copied), kept in a `Vec` reused across iterations;
+//! * `decode/messages_owned`: the same through a [`BothDecoder`] (either
+//!   direction), each frame a [`MessageBuf`];
 //! * `baseline/naive_reports`: the reader a user writes by hand (the mirte
 //!   client's): take the length byte, take that many bytes blindly, dispatch
 //!   on the report id, with no validation and no resync.
@@ -16,7 +21,9 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use robowire::telemetrix::{Framing, Host, HostDecoder, Report, Sonar};
+use robowire::telemetrix::{
+    both_decoder, BothDecoder, Framing, Host, HostDecoder, MessageBuf, Report, ReportBuf, Sonar,
+};
 use robowire::Encode;
 
 /// Tiny xorshift generator: seeded, reproducible, no dependency.
@@ -101,6 +108,52 @@ fn decode_all(input: &[u8], chunk: usize) -> Found {
         }
     }
     found
+}
+
+/// Decode `input` in one `feed`, keeping every owned frame in `kept`
+/// (cleared first); ids are read from the kept frames' bytes.
+fn feed_all<B: Copy>(
+    input: &[u8],
+    kept: &mut Vec<B>,
+    mut feed: impl FnMut(&[u8], &mut Vec<B>),
+    frame: impl Fn(&B) -> &[u8],
+) -> Found {
+    kept.clear();
+    feed(input, kept);
+    let mut found = Found::default();
+    for buf in kept.iter() {
+        found.add(frame(black_box(buf))[1]);
+    }
+    found
+}
+
+/// `feed_all` through a host decoder: every report a [`ReportBuf`].
+fn reports_owned(input: &[u8], kept: &mut Vec<ReportBuf>) -> Found {
+    let mut decoder = HostDecoder::new(Framing::<Host>::new());
+    feed_all(
+        input,
+        kept,
+        |input, kept| {
+            kept.extend(decoder.feed(input).flatten().map(|frame| frame.message));
+            kept.extend(decoder.flush().flatten().map(|frame| frame.message));
+        },
+        ReportBuf::frame,
+    )
+}
+
+/// `feed_all` through a decoder of both directions: every frame a
+/// [`MessageBuf`].
+fn messages_owned(input: &[u8], kept: &mut Vec<MessageBuf>) -> Found {
+    let mut decoder: BothDecoder = both_decoder();
+    feed_all(
+        input,
+        kept,
+        |input, kept| {
+            kept.extend(decoder.feed(input).flatten().map(|frame| frame.message));
+            kept.extend(decoder.flush().flatten().map(|frame| frame.message));
+        },
+        MessageBuf::frame,
+    )
 }
 
 /// The fields a hand-written reader pulls out of the reports it knows (read
@@ -210,6 +263,10 @@ fn bench(c: &mut Criterion) {
     assert_eq!(decode_all(&input, whole), generated);
     assert_eq!(decode_all(&input, 64), generated);
     assert_eq!(naive_all(&input, whole), generated);
+    let mut kept_reports = Vec::with_capacity(generated.frames as usize);
+    let mut kept_messages = Vec::with_capacity(generated.frames as usize);
+    assert_eq!(reports_owned(&input, &mut kept_reports), generated);
+    assert_eq!(messages_owned(&input, &mut kept_messages), generated);
 
     let mut group = c.benchmark_group("telemetrix");
     group.throughput(Throughput::Bytes(input.len() as u64));
@@ -221,6 +278,12 @@ fn bench(c: &mut Criterion) {
     });
     group.bench_function("decode/reports_chunk64", |b| {
         b.iter(|| decode_all(black_box(&input), 64))
+    });
+    group.bench_function("decode/reports_owned", |b| {
+        b.iter(|| reports_owned(black_box(&input), &mut kept_reports))
+    });
+    group.bench_function("decode/messages_owned", |b| {
+        b.iter(|| messages_owned(black_box(&input), &mut kept_messages))
     });
     group.bench_function("baseline/naive_reports", |b| {
         b.iter(|| naive_all(black_box(&input), whole))
