@@ -2,13 +2,14 @@
 
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
+use super::kind::{field_type, read_field, write_field};
 use super::list::List;
 use super::module::{ModuleNew, MODULE_INIT_MAX};
 use super::quirk::command_quirk;
 use super::sensor::SensorNew;
 use super::wire::{
-    analog_pin_ok, command_id, split_frame, Reader, Writer, COMMAND_PAYLOAD_MAX, MAX_COMMAND_FRAME,
-    MAX_COMMAND_LEN, PIN_COUNT,
+    analog_pin_ok, command_id, counted, split_frame, Reader, Writer, COMMAND_PAYLOAD_MAX,
+    MAX_COMMAND_FRAME, MAX_COMMAND_LEN, PIN_COUNT,
 };
 use crate::encode::check_room;
 use crate::{Encode, EncodeError};
@@ -83,47 +84,6 @@ macro_rules! write_row {
     };
 }
 
-/// Write one field of a `plain` row.
-macro_rules! write_field {
-    ($w:ident, $f:ident, counted_pins $args:tt) => {
-        write_field!($w, $f, counted)
-    };
-    ($w:ident, $f:ident, nonzero_u32) => {
-        $w.u32($f)
-    };
-    ($w:ident, $f:ident, trailing_u16_pair $args:tt) => {
-        if let Some((a, b)) = $f {
-            $w.u16(a);
-            $w.u16(b);
-        }
-    };
-    ($w:ident, $f:ident, counted $($args:tt)?) => {{
-        $w.u8($f.len() as u8);
-        $w.bytes($f);
-    }};
-    ($w:ident, $f:ident, trailing_flag) => {
-        if let Some(flag) = $f {
-            $w.flag(flag);
-        }
-    };
-    ($w:ident, $f:ident, flag) => {
-        $w.flag($f)
-    };
-    ($w:ident, $f:ident, level) => {
-        $w.flag($f)
-    };
-    ($w:ident, $f:ident, u16) => {
-        $w.u16($f)
-    };
-    ($w:ident, $f:ident, rgb) => {
-        $w.bytes(&[$f.r, $f.g, $f.b])
-    };
-    // u8, pin, range
-    ($w:ident, $f:ident, $kind:ident $($args:tt)?) => {
-        $w.u8($f)
-    };
-}
-
 /// The parser's `match` on the command id: the arms of the `plain` rows from
 /// the command table, then the hand-written ones (`custom` rows, unknown
 /// ids), in one `match` so that the Pico links one compact function. A
@@ -152,60 +112,6 @@ macro_rules! parse_match {
             $($custom)*
         }
     };
-}
-
-/// Read and check one field of a `plain` row.
-macro_rules! read_field {
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, counted_pins($count:literal, $each:literal)) => {{
-        let pins = counted($r, $count, 0)?;
-        ensure(pins.iter().all(|&p| p < PIN_COUNT), $cmd, $each)?;
-        pins
-    }};
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, nonzero_u32) => {{
-        let v = $r.u32()?;
-        ensure(v >= 1, $cmd, $key)?;
-        v
-    }};
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, trailing_u16_pair $args:tt) => {
-        if $r.remaining() > 0 {
-            Some(($r.u16()?, $r.u16()?))
-        } else {
-            None
-        }
-    };
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, counted($count:literal)) => {
-        counted($r, $count, 0)?
-    };
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, trailing_flag) => {
-        if $r.remaining() > 0 {
-            Some($r.flag($key)?)
-        } else {
-            None
-        }
-    };
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, u8) => {
-        $r.u8()?
-    };
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, u16) => {
-        $r.u16()?
-    };
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, pin) => {
-        $r.pin($key)?
-    };
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, flag) => {
-        $r.flag($key)?
-    };
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, level) => {
-        $r.flag($key)?
-    };
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, rgb) => {
-        rgb($r)?
-    };
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, range($lo:literal, $hi:literal)) => {{
-        let v = $r.u8()?;
-        ensure(($lo..=$hi).contains(&v), $cmd, stringify!($f))?;
-        v
-    }};
 }
 
 super::table::command_table!(command_codec);
@@ -338,7 +244,7 @@ macro_rules! command_enum {
             $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)?
         }; $($rest:tt)*) => {
         command_enum!(@rows [
-            $($vars)* $(#[$vm])* $p { $($(#[$fm])* $f: field_type!($kind),)* },
+            $($vars)* $(#[$vm])* $p { $($(#[$fm])* $f: field_type!($kind $(($($arg)*))?),)* },
         ] $($rest)*);
     };
     (@rows [$($vars:tt)*]
@@ -368,31 +274,6 @@ macro_rules! command_enum {
     };
     ($($rows:tt)*) => {
         command_enum!(@rows [] $($rows)*);
-    };
-}
-
-/// The Rust type of a `plain` row's field kind.
-macro_rules! field_type {
-    (counted_pins) => { &'a [u8] };
-    (nonzero_u32) => { u32 };
-    (trailing_u16_pair) => { Option<(u16, u16)> };
-    (counted) => { &'a [u8] };
-    (trailing_flag) => { Option<bool> };
-    (u16) => {
-        u16
-    };
-    (flag) => {
-        bool
-    };
-    (level) => {
-        bool
-    };
-    (rgb) => {
-        Rgb
-    };
-    // u8, pin, range
-    ($kind:ident) => {
-        u8
     };
 }
 
@@ -699,13 +580,6 @@ fn i2c_addr(r: &mut Reader<'_>) -> Result<u8, Error> {
 fn rgb(r: &mut Reader<'_>) -> Result<Rgb, Error> {
     let [r_, g, b] = r.array()?;
     Ok(Rgb { r: r_, g, b })
-}
-
-/// A count byte followed by that many bytes.
-fn counted<'a>(r: &mut Reader<'a>, field: &'static str, min: u8) -> Result<&'a [u8], Error> {
-    let n = r.u8()?;
-    ensure(n >= min, r.id(), field)?;
-    r.take(usize::from(n))
 }
 
 /// Parse a command's payload: the `plain` rows' arms come from the command

@@ -262,7 +262,7 @@ macro_rules! command_fields {
             fn payload(&self, w: &mut W<'_>) {
                 match *self.command {
                     $($(Command::$v { .. })|+ => {
-                        visit_row!(self, w, $codec $($p)? { $($body)* })
+                        visit_row!(self, w, Command command, $codec $($p)? { $($body)* })
                     })*
                 }
             }
@@ -270,14 +270,19 @@ macro_rules! command_fields {
     };
 }
 
-/// Visit a row's payload.
+/// Visit a row's payload: `$view.$value` is the `$enum` (a `plain` row's
+/// variant is named after `plain`, or in brackets by a report row).
 macro_rules! visit_row {
-    ($view:ident, $w:ident, custom { $($decl:tt)* }) => {
+    ($view:ident, $w:ident, $enum:ident $value:ident, $([$($vs:ident)+])? custom $($rest:tt)*) => {
         $view.visit_custom($w)
     };
-    ($view:ident, $w:ident, plain $p:ident {}) => {{}};
-    ($view:ident, $w:ident, plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
-        if let Command::$p { $($f),* } = *$view.command {
+    ($view:ident, $w:ident, $enum:ident $value:ident, [$p:ident] plain $body:tt) => {
+        visit_row!($view, $w, $enum $value, plain $p $body)
+    };
+    ($view:ident, $w:ident, $enum:ident $value:ident, plain $p:ident {}) => {{}};
+    ($view:ident, $w:ident, $enum:ident $value:ident,
+        plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
+        if let $enum::$p { $($f),* } = *$view.$value {
             $(visit_field!($w, $f, $key, $kind $(($($arg)*))?);)*
         }
     };
@@ -296,6 +301,12 @@ macro_rules! visit_field {
     };
     ($w:ident, $f:ident, $key:literal, counted $args:tt) => {
         $w.bytes($key, $f)
+    };
+    ($w:ident, $f:ident, $key:literal, rest) => {
+        $w.bytes($key, $f)
+    };
+    ($w:ident, $f:ident, $key:literal, array $args:tt) => {
+        $w.bytes($key, &$f)
     };
     ($w:ident, $f:ident, $key:literal, trailing_flag) => {
         if let Some(flag) = $f {
@@ -318,6 +329,29 @@ macro_rules! visit_field {
 }
 
 super::table::command_table!(command_fields);
+
+/// A report's payload fields, from the report table: the `plain` rows'
+/// fields by their kind, the `custom` rows by [`ReportView::visit_custom`].
+macro_rules! report_fields {
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
+        { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
+        impl ReportView<'_, '_> {
+            fn payload(&self, w: &mut W<'_>) {
+                match *self.report {
+                    $($($(Report::$v { .. })|+)|+ => {
+                        visit_row!(self, w, Report report, [$($($v)+)+] $codec { $($body)* })
+                    })*
+                    Report::Unknown { id, payload } => {
+                        w.u("id", id);
+                        w.bytes("payload", payload);
+                    }
+                }
+            }
+        }
+    };
+}
+
+super::table::report_table!(report_fields);
 
 impl Visit for CommandView<'_, '_> {
     fn visit(&self, w: &mut W<'_>) {
@@ -661,8 +695,14 @@ impl Visit for ReportView<'_, '_> {
         if let Some(also) = self.also {
             w.s("also", also);
         }
+        self.payload(w);
+    }
+}
+
+impl ReportView<'_, '_> {
+    /// The payload fields of a `custom` row of the report table.
+    fn visit_custom(&self, w: &mut W<'_>) {
         match *self.report {
-            Report::LoopBack { byte } => w.u("byte", byte),
             Report::Digital { pin, value } => {
                 w.u("pin", pin);
                 w.level("value", value);
@@ -671,11 +711,6 @@ impl Visit for ReportView<'_, '_> {
                 w.u("pin", pin);
                 w.u("value", value);
             }
-            Report::FirmwareVersion { major, minor } => {
-                w.u("major", major);
-                w.u("minor", minor);
-            }
-            Report::UniqueId { ref id } => w.bytes("id", id),
             Report::I2cWrite {
                 port,
                 msg_id,
@@ -685,8 +720,7 @@ impl Visit for ReportView<'_, '_> {
                 w.u("msg_id", msg_id);
                 w.i("result", result);
             }
-            Report::I2cWriteFailed { port, addr, stale }
-            | Report::I2cReadFailed { port, addr, stale } => {
+            Report::I2cWriteFailed { port, addr, stale } => {
                 w.u("port", port);
                 w.u("addr", addr);
                 w.u("stale", stale);
@@ -751,10 +785,6 @@ impl Visit for ReportView<'_, '_> {
                 w.i("temp_int", temp);
                 w.i("temp_hundredths", temp_hundredths);
             }
-            Report::Spi { port, data } => {
-                w.u("port", port);
-                w.bytes("data", data);
-            }
             Report::Encoder { pin, steps } => {
                 w.u("pin_a", pin);
                 w.i("steps", steps);
@@ -774,10 +804,6 @@ impl Visit for ReportView<'_, '_> {
                 w.type_byte("sensor_type", sensor_type, SensorType::NAMES);
                 w.flag("supported", supported);
             }
-            Report::Pong { counter, boot_id } => {
-                w.u("counter", counter);
-                w.u("boot_id", boot_id);
-            }
             Report::ModuleSupported {
                 module_type,
                 supported,
@@ -790,24 +816,8 @@ impl Visit for ReportView<'_, '_> {
                 w.s("module_type", report.module_type().name());
                 w.obj("message", &report);
             }
-            Report::Id { id } | Report::IdSet { id } => w.u("id", id),
-            Report::Feature {
-                msg_type,
-                supported,
-                extras,
-            } => {
-                w.u("msg_type", msg_type);
-                w.flag("ok", supported);
-                w.bytes("extras", extras);
-            }
-            Report::Debug { id, value } => {
-                w.u("id", id);
-                w.u("value", value);
-            }
-            Report::Unknown { id, payload } => {
-                w.u("id", id);
-                w.bytes("payload", payload);
-            }
+            // `plain` rows and unknown ids: `payload`.
+            _ => {}
         }
     }
 }

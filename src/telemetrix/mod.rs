@@ -250,6 +250,7 @@ mod error;
 mod fast;
 mod fields;
 mod framing;
+mod kind;
 mod list;
 mod module;
 mod names;

@@ -3,11 +3,12 @@
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
 use super::fast;
+use super::kind::{field_type, read_field, write_field};
 use super::module::{module_report_len_ok, ModuleReport};
 use super::quirk::report_quirk;
 use super::sensor::{SensorReading, SensorType};
 use super::wire::{
-    analog_pin_ok, report_id, report_known, split_frame, Reader, Writer, MAX_REPORT_FRAME,
+    analog_pin_ok, counted, report_id, report_known, split_frame, Reader, Writer, MAX_REPORT_FRAME,
 };
 use crate::encode::check_room;
 use crate::{Encode, EncodeError};
@@ -236,220 +237,123 @@ impl Sonar {
     }
 }
 
-/// A report, Pico → host. Variable byte fields (I2C and SPI data, feature
-/// extras, Hiwonder positions, an unknown report's payload) borrow from the
-/// frame they were parsed from or from the caller;
-/// [`ReportBuf`](super::ReportBuf) is the owned form.
-///
-/// With the `serde` feature it serializes in the JSON-lines schema of the
-/// `robowire` tool (`{"type":"pong","counter":7,"boot_id":42}`); deserialize
-/// a [`ReportBuf`](super::ReportBuf), which owns its bytes. Sensor floats
-/// that JSON cannot carry are written as `"inf"`, `"-inf"` and
-/// `"nan:0x…"`.
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Report<'a> {
-    /// 0: loopback echo.
-    LoopBack {
-        /// The echoed byte.
-        byte: u8,
-    },
-    /// 2: a digital input changed.
-    Digital {
-        /// GPIO (< 30).
-        pin: u8,
-        /// Level, `true` for high: `1` on the wire, in JSON and in `Display`
-        /// (see [levels and flags](super#levels-and-flags)).
-        value: bool,
-    },
-    /// 3: an analog input changed.
-    Analog {
-        /// GPIO 26..=30 (mirte 1.3; ADC 0..=4 from older builds is accepted
-        /// too), ADC 0..=4 in older dialects.
-        pin: u8,
-        /// 0..=4095.
-        value: u16,
-    },
-    /// 5: firmware version (mirte 1.3 sends 1.3).
-    FirmwareVersion {
-        /// Major.
-        major: u8,
-        /// Minor.
-        minor: u8,
-    },
-    /// 6: unique id (6 board bytes, then `00 00` in mirte firmware).
-    UniqueId {
-        /// The 8 bytes.
-        id: [u8; 8],
-    },
-    /// 8 (mirte): I2C write result, always sent.
-    I2cWrite {
-        /// Port.
-        port: u8,
-        /// The command's `msg_id`.
-        msg_id: u8,
-        /// Bytes written, or −1 (error), −2 (timeout).
-        result: i8,
-    },
-    /// 8 (upstream): I2C_WRITE_FAILED, sent on failure only.
-    I2cWriteFailed {
-        /// Port.
-        port: u8,
-        /// Address.
-        addr: u8,
-        /// Meaningless byte.
-        stale: u8,
-    },
-    /// 9 (mirte): I2C read NAK.
-    I2cReadFailed {
-        /// Port.
-        port: u8,
-        /// Address.
-        addr: u8,
-        /// Leftover from the previous I2C report.
-        stale: u8,
-    },
-    /// 10 (mirte): I2C read data, `port, msg_id, reg, n, 00, data`.
-    I2cRead {
-        /// Port.
-        port: u8,
-        /// The command's `msg_id`.
-        msg_id: u8,
-        /// Register.
-        reg: u8,
-        /// 1..=57 bytes.
-        data: &'a [u8],
-    },
-    /// 10 (upstream): I2C read data, `port, addr, reg, n, data`.
-    I2cReadUpstream {
-        /// Port.
-        port: u8,
-        /// Address.
-        addr: u8,
-        /// Register.
-        reg: u8,
-        /// 1..=57 bytes.
-        data: &'a [u8],
-    },
-    /// 11: sonar distance.
-    Sonar(Sonar),
-    /// 12: DHT reading (all zeros after a read error). Below 0 °C both
-    /// temperature parts are negative.
-    Dht {
-        /// GPIO (< 30).
-        pin: u8,
-        /// Humidity, integer part.
-        humidity: u8,
-        /// Humidity, hundredths (0..=99).
-        humidity_hundredths: u8,
-        /// Temperature in °C, integer part.
-        temp: i8,
-        /// Temperature, hundredths (−99..=99, same sign as `temp`).
-        temp_hundredths: i8,
-    },
-    /// 13: SPI read data.
-    Spi {
-        /// Port.
-        port: u8,
-        /// 0..=60 bytes.
-        data: &'a [u8],
-    },
-    /// 14 (mirte): encoder steps since the last report (never 0).
-    Encoder {
-        /// GPIO A (< 30).
-        pin: u8,
-        /// Steps.
-        steps: i8,
-    },
-    /// 20 (mirte 1.3): a sensor reading.
-    Sensor {
-        /// The sensor's number.
-        sensor_num: u8,
-        /// Type and data.
-        reading: SensorReading,
-    },
-    /// 21 (mirte 1.3): answer to a sensor check.
-    SensorSupported {
-        /// The type asked about.
-        sensor_type: u8,
-        /// Supported.
-        supported: bool,
-    },
-    /// 32 (mirte): answer to PING.
-    Pong {
-        /// The PING's counter.
-        counter: u8,
-        /// Random per boot, 0..=99: a change means the Pico rebooted.
-        boot_id: u8,
-    },
-    /// 33 (mirte 1.3): answer to a module check.
-    ModuleSupported {
-        /// The type asked about.
-        module_type: u8,
-        /// Supported.
-        supported: bool,
-    },
-    /// 34 (mirte 1.3): a module's report.
-    Module {
-        /// The module's number.
-        module_num: u8,
-        /// Type, subtype and data.
-        report: ModuleReport<'a>,
-    },
-    /// 35 (mirte 1.3): the saved id (`FF` if never set).
-    Id {
-        /// The id.
-        id: u8,
-    },
-    /// 36 (mirte 1.3): the id just saved.
-    IdSet {
-        /// The id.
-        id: u8,
-    },
-    /// 37 (mirte 1.3): answer to FEATURE_CHECK.
-    Feature {
-        /// The command id asked about.
-        msg_type: u8,
-        /// Whether the firmware has it.
-        supported: bool,
-        /// Extras (spec §5): for 1 `30 12 14 count pins…`, for 5 `1 3`, for
-        /// 7 `12`, for 10 `2`, for 13 `4`, for 30 `4 2 1`; none otherwise.
-        extras: &'a [u8],
-    },
-    /// 99 (mirte): debug print.
-    Debug {
-        /// Where it came from.
-        id: u8,
-        /// Value.
-        value: u16,
-    },
-    /// A report id the dialect does not define: decoded only by a lenient
-    /// [`Framing`](super::Framing) with [`lenient`](super::Framing::lenient).
-    Unknown {
-        /// The id.
-        id: u8,
-        /// The payload.
-        payload: &'a [u8],
-    },
+/// The `Report` enum, from the report table: a `plain` row's variant is
+/// built from its fields, a `custom` row gives its variants as written.
+macro_rules! report_enum {
+    (@rows [$($vars:tt)*]
+        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] { $name:literal [$p:ident] }
+        plain { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? };
+        $($rest:tt)*) => {
+        report_enum!(@rows [
+            $($vars)* $(#[$m])* $p { $($(#[$fm])* $f: field_type!($kind $(($($arg)*))?),)* },
+        ] $($rest)*);
+    };
+    (@rows [$($vars:tt)*]
+        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] { $($name:literal [$($v:ident),+]),+ }
+        custom { $($decl:tt)* }; $($rest:tt)*) => {
+        report_enum!(@rows [$($vars)* $($decl)*] $($rest)*);
+    };
+    (@rows [$($vars:tt)*]) => {
+        /// A report, Pico → host. Variable byte fields (I2C and SPI data, feature
+        /// extras, Hiwonder positions, an unknown report's payload) borrow from the
+        /// frame they were parsed from or from the caller;
+        /// [`ReportBuf`](super::ReportBuf) is the owned form.
+        ///
+        /// With the `serde` feature it serializes in the JSON-lines schema of the
+        /// `robowire` tool (`{"type":"pong","counter":7,"boot_id":42}`); deserialize
+        /// a [`ReportBuf`](super::ReportBuf), which owns its bytes. Sensor floats
+        /// that JSON cannot carry are written as `"inf"`, `"-inf"` and
+        /// `"nan:0x…"`.
+        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub enum Report<'a> {
+            $($vars)*
+            /// A report id the dialect does not define: decoded only by a lenient
+            /// [`Framing`](super::Framing) with [`lenient`](super::Framing::lenient).
+            Unknown {
+                /// The id.
+                id: u8,
+                /// The payload.
+                payload: &'a [u8],
+            },
+        }
+    };
+    ($($rows:tt)*) => {
+        report_enum!(@rows [] $($rows)*);
+    };
 }
 
-/// `Report::id`'s `match`, from the report table.
-macro_rules! report_id_match {
-    ([$report:ident] $($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
-        { $($name:literal [$($v:ident),+]),+ };)*) => {
-        match $report {
-            $($($(Report::$v { .. })|+)|+ => $n,)*
-            Report::Unknown { id, .. } => *id,
+super::table::report_table!(report_enum);
+
+/// The codec's parts that come from the report table: `Report::id` and
+/// the payloads of the `plain` rows (the `custom` ones are
+/// [`Report::write_custom`]).
+macro_rules! report_codec {
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
+        { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
+        impl Report<'_> {
+            /// The report id.
+            pub const fn id(&self) -> u8 {
+                match self {
+                    $($($(Report::$v { .. })|+)|+ => $n,)*
+                    Report::Unknown { id, .. } => *id,
+                }
+            }
+
+            fn write_payload(&self, w: &mut Writer<'_>, dialect: Dialect) {
+                match *self {
+                    $($($(Report::$v { .. })|+)|+ => {
+                        write_report_row!(self, w, dialect, [$($($v)+)+] $codec { $($body)* })
+                    })*
+                    Report::Unknown { payload, .. } => w.bytes(payload),
+                }
+            }
         }
     };
 }
 
-impl Report<'_> {
-    /// The report id.
-    pub const fn id(&self) -> u8 {
-        super::table::report_table!(report_id_match, self)
-    }
+/// Write a report row's payload.
+macro_rules! write_report_row {
+    ($report:ident, $w:ident, $dialect:ident, $vs:tt custom { $($decl:tt)* }) => {
+        $report.write_custom($w, $dialect)
+    };
+    ($report:ident, $w:ident, $dialect:ident, [$p:ident]
+        plain { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
+        if let Report::$p { $($f),* } = *$report {
+            $(write_field!($w, $f, $kind $(($($arg)*))?);)*
+        }
+    };
 }
+
+/// The parser's `match` on the report id: the arms of the `plain` rows from
+/// the report table, then the hand-written ones (`custom` rows, unknown ids).
+macro_rules! parse_report_match {
+    ([($dialect:ident, $r:ident, $rid:ident) { $($custom:tt)* }] $($rows:tt)*) => {
+        parse_report_match!(@rows ($dialect, $r, $rid) [$($custom)*] [] $($rows)*)
+    };
+    (@rows $names:tt $custom:tt [$($arms:tt)*]
+        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] { $($name:literal [$($v:ident),+]),+ }
+        custom { $($decl:tt)* }; $($rest:tt)*) => {
+        parse_report_match!(@rows $names $custom [$($arms)*] $($rest)*)
+    };
+    (@rows ($dialect:ident, $r:ident, $rid:ident) $custom:tt [$($arms:tt)*]
+        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] { $name:literal [$p:ident] }
+        plain { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? };
+        $($rest:tt)*) => {
+        parse_report_match!(@rows ($dialect, $r, $rid) $custom [
+            $($arms)*
+            $n => Report::$p { $($f: read_field!($r, $rid, $f, $key, $kind $(($($arg)*))?),)* },
+        ] $($rest)*)
+    };
+    (@rows ($dialect:ident, $r:ident, $rid:ident) [$($custom:tt)*] [$($arms:tt)*]) => {
+        match $rid {
+            $($arms)*
+            $($custom)*
+        }
+    };
+}
+
+super::table::report_table!(report_codec);
 
 impl Report<'_> {
     /// Frame length of this report in `dialect`.
@@ -551,9 +455,9 @@ impl Report<'_> {
         w.patch_len();
     }
 
-    fn write_payload(&self, w: &mut Writer<'_>, dialect: Dialect) {
+    /// The payload of a `custom` row of the report table.
+    fn write_custom(&self, w: &mut Writer<'_>, dialect: Dialect) {
         match self {
-            Report::LoopBack { byte } => w.u8(*byte),
             Report::Digital { pin, value } => {
                 w.u8(*pin);
                 w.flag(*value);
@@ -562,8 +466,6 @@ impl Report<'_> {
                 w.u8(*pin);
                 w.u16(*value);
             }
-            Report::FirmwareVersion { major, minor } => w.bytes(&[*major, *minor]),
-            Report::UniqueId { id } => w.bytes(id),
             Report::I2cWrite {
                 port,
                 msg_id,
@@ -572,8 +474,7 @@ impl Report<'_> {
                 w.bytes(&[*port, *msg_id]);
                 w.i8(*result);
             }
-            Report::I2cWriteFailed { port, addr, stale }
-            | Report::I2cReadFailed { port, addr, stale } => w.bytes(&[*port, *addr, *stale]),
+            Report::I2cWriteFailed { port, addr, stale } => w.bytes(&[*port, *addr, *stale]),
             Report::I2cRead {
                 port,
                 msg_id,
@@ -619,10 +520,6 @@ impl Report<'_> {
                 w.i8(*temp);
                 w.i8(*temp_hundredths);
             }
-            Report::Spi { port, data } => {
-                w.bytes(&[*port, data.len() as u8]);
-                w.bytes(data);
-            }
             Report::Encoder { pin, steps } => {
                 w.u8(*pin);
                 w.i8(*steps);
@@ -641,7 +538,6 @@ impl Report<'_> {
                 w.bytes(&[0, *sensor_type]);
                 w.flag(*supported);
             }
-            Report::Pong { counter, boot_id } => w.bytes(&[*counter, *boot_id]),
             Report::ModuleSupported {
                 module_type,
                 supported,
@@ -653,21 +549,8 @@ impl Report<'_> {
                 w.u8(*module_num);
                 report.write(w);
             }
-            Report::Id { id } | Report::IdSet { id } => w.u8(*id),
-            Report::Feature {
-                msg_type,
-                supported,
-                extras,
-            } => {
-                w.u8(*msg_type);
-                w.flag(*supported);
-                w.bytes(extras);
-            }
-            Report::Debug { id, value } => {
-                w.u8(*id);
-                w.u16(*value);
-            }
-            Report::Unknown { payload, .. } => w.bytes(payload),
+            // `plain` rows: `write_payload`.
+            _ => {}
         }
     }
 }
@@ -751,177 +634,142 @@ fn sonar_cm(r: &mut Reader<'_>) -> Result<u16, Error> {
 
 fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Report<'a>, Error> {
     let rid = r.id();
-    Ok(match rid {
-        id::SERIAL_LOOP_BACK => Report::LoopBack { byte: r.u8()? },
-        id::DIGITAL => Report::Digital {
-            pin: r.pin("pin")?,
-            value: r.flag("value")?,
-        },
-        id::ANALOG => {
-            let pin = r.u8()?;
-            // mirte 1.3 builds before the GPIO renumbering still send ADC
-            // numbers, and the version was not bumped.
-            let ok = analog_pin_ok(dialect, pin) || analog_pin_ok(Dialect::Mirte12, pin);
-            ensure(ok, rid, "pin")?;
-            let value = r.u16()?;
-            ensure(value <= 4095, rid, "value")?;
-            Report::Analog { pin, value }
-        }
-        id::FIRMWARE => Report::FirmwareVersion {
-            major: r.u8()?,
-            minor: r.u8()?,
-        },
-        id::UNIQUE_ID => Report::UniqueId { id: r.array()? },
-        id::I2C_WRITE if dialect.is_mirte() => Report::I2cWrite {
-            port: port(r)?,
-            msg_id: r.u8()?,
-            result: r.i8()?,
-        },
-        id::I2C_WRITE => Report::I2cWriteFailed {
-            port: port(r)?,
-            addr: i2c_addr(r)?,
-            stale: r.u8()?,
-        },
-        id::I2C_READ_FAILED => Report::I2cReadFailed {
-            port: port(r)?,
-            addr: i2c_addr(r)?,
-            stale: r.u8()?,
-        },
-        id::I2C_READ if dialect.is_mirte() => {
-            let (port, msg_id, reg) = (port(r)?, r.u8()?, r.u8()?);
-            let n = r.u8()?;
-            ensure(r.u8()? == 0, rid, "pad")?;
-            Report::I2cRead {
-                port,
-                msg_id,
-                reg,
-                data: r.take(usize::from(n))?,
+    Ok(
+        super::table::report_table!(parse_report_match, (dialect, r, rid) {
+            id::DIGITAL => Report::Digital {
+                pin: r.pin("pin")?,
+                value: r.flag("value")?,
+            },
+            id::ANALOG => {
+                let pin = r.u8()?;
+                // mirte 1.3 builds before the GPIO renumbering still send ADC
+                // numbers, and the version was not bumped.
+                let ok = analog_pin_ok(dialect, pin) || analog_pin_ok(Dialect::Mirte12, pin);
+                ensure(ok, rid, "pin")?;
+                let value = r.u16()?;
+                ensure(value <= 4095, rid, "value")?;
+                Report::Analog { pin, value }
             }
-        }
-        id::I2C_READ => {
-            let (port, addr, reg) = (port(r)?, i2c_addr(r)?, r.u8()?);
-            let n = r.u8()?;
-            Report::I2cReadUpstream {
-                port,
-                addr,
-                reg,
-                data: r.take(usize::from(n))?,
-            }
-        }
-        id::SONAR => {
-            let trig = r.pin("trig")?;
-            Report::Sonar(match dialect {
-                Dialect::Mirte13 if r.remaining() == 3 => Sonar::WithEcho {
-                    trig,
-                    echo: r.pin("echo")?,
-                    cm: sonar_cm(r)?,
-                },
-                Dialect::Mirte13 => Sonar::TrigOnly {
-                    trig,
-                    cm: sonar_cm(r)?,
-                },
-                Dialect::Mirte12 => {
-                    let m = r.u8()?;
-                    let cm = r.u8()?;
-                    ensure(cm < 100, rid, "cm")?;
-                    Sonar::MetresCm { trig, m, cm }
+            id::I2C_WRITE if dialect.is_mirte() => Report::I2cWrite {
+                port: port(r)?,
+                msg_id: r.u8()?,
+                result: r.i8()?,
+            },
+            id::I2C_WRITE => Report::I2cWriteFailed {
+                port: port(r)?,
+                addr: i2c_addr(r)?,
+                stale: r.u8()?,
+            },
+            id::I2C_READ if dialect.is_mirte() => {
+                let (port, msg_id, reg) = (port(r)?, r.u8()?, r.u8()?);
+                let n = r.u8()?;
+                ensure(r.u8()? == 0, rid, "pad")?;
+                Report::I2cRead {
+                    port,
+                    msg_id,
+                    reg,
+                    data: r.take(usize::from(n))?,
                 }
-                Dialect::Upstream11 => {
-                    let cm = r.u8()?;
-                    let hundredths = r.u8()?;
-                    ensure(hundredths < 100, rid, "hundredths")?;
-                    Sonar::CmHundredths {
+            }
+            id::I2C_READ => {
+                let (port, addr, reg) = (port(r)?, i2c_addr(r)?, r.u8()?);
+                let n = r.u8()?;
+                Report::I2cReadUpstream {
+                    port,
+                    addr,
+                    reg,
+                    data: r.take(usize::from(n))?,
+                }
+            }
+            id::SONAR => {
+                let trig = r.pin("trig")?;
+                Report::Sonar(match dialect {
+                    Dialect::Mirte13 if r.remaining() == 3 => Sonar::WithEcho {
                         trig,
-                        cm,
-                        hundredths,
+                        echo: r.pin("echo")?,
+                        cm: sonar_cm(r)?,
+                    },
+                    Dialect::Mirte13 => Sonar::TrigOnly {
+                        trig,
+                        cm: sonar_cm(r)?,
+                    },
+                    Dialect::Mirte12 => {
+                        let m = r.u8()?;
+                        let cm = r.u8()?;
+                        ensure(cm < 100, rid, "cm")?;
+                        Sonar::MetresCm { trig, m, cm }
                     }
+                    Dialect::Upstream11 => {
+                        let cm = r.u8()?;
+                        let hundredths = r.u8()?;
+                        ensure(hundredths < 100, rid, "hundredths")?;
+                        Sonar::CmHundredths {
+                            trig,
+                            cm,
+                            hundredths,
+                        }
+                    }
+                })
+            }
+            id::DHT => {
+                let pin = r.pin("pin")?;
+                let humidity = r.u8()?;
+                let humidity_hundredths = r.u8()?;
+                ensure(humidity_hundredths < 100, rid, "humidity_hundredths")?;
+                let temp = r.i8()?;
+                let temp_hundredths = r.i8()?;
+                let same_sign = !(temp > 0 && temp_hundredths < 0 || temp < 0 && temp_hundredths > 0);
+                ensure(
+                    (-99..=99).contains(&temp_hundredths) && same_sign,
+                    rid,
+                    "temp_hundredths",
+                )?;
+                Report::Dht {
+                    pin,
+                    humidity,
+                    humidity_hundredths,
+                    temp,
+                    temp_hundredths,
                 }
-            })
-        }
-        id::DHT => {
-            let pin = r.pin("pin")?;
-            let humidity = r.u8()?;
-            let humidity_hundredths = r.u8()?;
-            ensure(humidity_hundredths < 100, rid, "humidity_hundredths")?;
-            let temp = r.i8()?;
-            let temp_hundredths = r.i8()?;
-            let same_sign = !(temp > 0 && temp_hundredths < 0 || temp < 0 && temp_hundredths > 0);
-            ensure(
-                (-99..=99).contains(&temp_hundredths) && same_sign,
-                rid,
-                "temp_hundredths",
-            )?;
-            Report::Dht {
-                pin,
-                humidity,
-                humidity_hundredths,
-                temp,
-                temp_hundredths,
             }
-        }
-        id::SPI => {
-            let port = port(r)?;
-            let n = r.u8()?;
-            Report::Spi {
-                port,
-                data: r.take(usize::from(n))?,
+            id::ENCODER => {
+                let pin = r.pin("pin")?;
+                let steps = r.i8()?;
+                ensure(steps != 0, rid, "steps")?;
+                Report::Encoder { pin, steps }
             }
-        }
-        id::ENCODER => {
-            let pin = r.pin("pin")?;
-            let steps = r.i8()?;
-            ensure(steps != 0, rid, "steps")?;
-            Report::Encoder { pin, steps }
-        }
-        id::SENSOR => {
-            let sensor_num = r.u8()?;
-            let sensor_type = SensorType::from_u8(r.u8()?).ok_or(Error::OutOfRange {
-                id: rid,
-                field: "sensor_type",
-            })?;
-            Report::Sensor {
-                sensor_num,
-                reading: SensorReading::parse(r, sensor_type, dialect)?,
+            id::SENSOR => {
+                let sensor_num = r.u8()?;
+                let sensor_type = SensorType::from_u8(r.u8()?).ok_or(Error::OutOfRange {
+                    id: rid,
+                    field: "sensor_type",
+                })?;
+                Report::Sensor {
+                    sensor_num,
+                    reading: SensorReading::parse(r, sensor_type, dialect)?,
+                }
             }
-        }
-        id::SENSOR_MAIN => {
-            ensure(r.u8()? == 0, rid, "subtype")?;
-            Report::SensorSupported {
-                sensor_type: r.u8()?,
-                supported: r.flag("supported")?,
+            id::SENSOR_MAIN => {
+                ensure(r.u8()? == 0, rid, "subtype")?;
+                Report::SensorSupported {
+                    sensor_type: r.u8()?,
+                    supported: r.flag("supported")?,
+                }
             }
-        }
-        id::PONG => {
-            let counter = r.u8()?;
-            let boot_id = r.u8()?;
-            ensure(boot_id < 100, rid, "boot_id")?;
-            Report::Pong { counter, boot_id }
-        }
-        id::MODULE_MAIN => {
-            ensure(r.u8()? == 0, rid, "subtype")?;
-            Report::ModuleSupported {
-                module_type: r.u8()?,
-                supported: r.flag("supported")?,
+            id::MODULE_MAIN => {
+                ensure(r.u8()? == 0, rid, "subtype")?;
+                Report::ModuleSupported {
+                    module_type: r.u8()?,
+                    supported: r.flag("supported")?,
+                }
             }
-        }
-        id::MODULE => Report::Module {
-            module_num: r.u8()?,
-            report: ModuleReport::parse(r)?,
-        },
-        id::GET_ID => Report::Id { id: r.u8()? },
-        id::SET_ID => Report::IdSet { id: r.u8()? },
-        id::FEATURE_CHECK => Report::Feature {
-            msg_type: r.u8()?,
-            supported: r.flag("ok")?,
-            // `report_len_ok` has checked the extras' length.
-            extras: r.rest(),
-        },
-        id::DEBUG_PRINT => Report::Debug {
-            id: r.u8()?,
-            value: r.u16()?,
-        },
-        _ => return Err(Error::UnknownId { id: rid }),
-    })
+            id::MODULE => Report::Module {
+                module_num: r.u8()?,
+                report: ModuleReport::parse(r)?,
+            },
+            _ => return Err(Error::UnknownId { id: rid }),
+        }),
+    )
 }
 
 impl<'a> Report<'a> {

@@ -651,7 +651,7 @@ macro_rules! command_reader {
             buf: &'b mut Vec<u8>,
         ) -> Result<Command<'b>, String> {
             Ok(match kind {
-                $($name => read_row!(f, buf, $codec $($p)? { $($body)* }),)*
+                $($name => read_row!(f, buf, Command, $codec $($p)? { $($body)* }),)*
                 other => return Err(format!("unknown type `{other}`")),
             })
         }
@@ -668,13 +668,19 @@ macro_rules! row_is_plain {
     };
 }
 
-/// Read a row's members (a `custom` row's are read by [`read_command`]).
+/// Read a row's members as an `$enum` (a `custom` row's are read by
+/// [`read_command`] and [`read_report`]; a report row names its `plain`
+/// variant in brackets).
 macro_rules! read_row {
-    ($fields:ident, $buf:ident, custom { $($decl:tt)* }) => {
-        return Err(String::from("a custom row is read by read_command"))
+    ($fields:ident, $buf:ident, $enum:ident, $([$($vs:ident)+])? custom $($rest:tt)*) => {
+        return Err(String::from("a custom row is read by hand"))
     };
-    ($fields:ident, $buf:ident, plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
-        Command::$p { $($f: read_member!($fields, $buf, $key, $kind $(($($arg)*))?),)* }
+    ($fields:ident, $buf:ident, $enum:ident, [$p:ident] plain $body:tt) => {
+        read_row!($fields, $buf, $enum, plain $p $body)
+    };
+    ($fields:ident, $buf:ident, $enum:ident,
+        plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
+        $enum::$p { $($f: read_member!($fields, $buf, $key, $kind $(($($arg)*))?),)* }
     };
 }
 
@@ -705,6 +711,12 @@ macro_rules! read_member {
     ($fields:ident, $buf:ident, $key:literal, u8) => {
         u8_($fields, $key)?
     };
+    ($fields:ident, $buf:ident, $key:literal, rest) => {
+        bytes_in($fields, $key, $buf)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, array $args:tt) => {
+        $fields.array($key, byte)?
+    };
     ($fields:ident, $buf:ident, $key:literal, u16) => {
         u16_($fields, $key)?
     };
@@ -726,6 +738,35 @@ macro_rules! read_member {
 }
 
 super::table::command_table!(command_reader);
+
+/// The members of a `plain` row's report, from the report table (a
+/// `custom` row's are read by [`read_report`]).
+macro_rules! report_reader {
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
+        { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
+        /// Whether `kind` is a `plain` row's report.
+        fn is_plain_report(kind: &str) -> bool {
+            match kind {
+                $($($name)|+ => row_is_plain!($codec),)*
+                _ => false,
+            }
+        }
+
+        /// The members of a `plain` row's report `kind`.
+        fn read_plain_report<'b>(
+            kind: &str,
+            f: &mut Fields<'_>,
+            buf: &'b mut Vec<u8>,
+        ) -> Result<Report<'b>, String> {
+            Ok(match kind {
+                $($($name)|+ => read_row!(f, buf, Report, [$($($v)+)+] $codec { $($body)* }),)*
+                other => return Err(format!("unknown type `{other}`")),
+            })
+        }
+    };
+}
+
+super::table::report_table!(report_reader);
 
 /// The members of a command `kind` (one of [`Command::NAMES`]).
 fn read_command<'b>(
@@ -1116,11 +1157,11 @@ fn read_report<'b>(
     dialect: Dialect,
     buf: &'b mut Vec<u8>,
 ) -> Result<Report<'b>, String> {
+    if is_plain_report(kind) {
+        return read_plain_report(kind, f, buf);
+    }
     let upstream = dialect == Dialect::Upstream11;
     Ok(match kind {
-        "serial_loop_back_report" => Report::LoopBack {
-            byte: u8_(f, "byte")?,
-        },
         "digital_report" => Report::Digital {
             pin: pin_(f, "pin")?,
             value: digital_value(f)?,
@@ -1129,24 +1170,12 @@ fn read_report<'b>(
             pin: u8_(f, "pin")?,
             value: f.int("value", 0, 4095)? as u16,
         },
-        "firmware_version" => Report::FirmwareVersion {
-            major: u8_(f, "major")?,
-            minor: u8_(f, "minor")?,
-        },
-        "pico_unique_id" => Report::UniqueId {
-            id: f.array("id", byte)?,
-        },
         "i2c_write_report" => Report::I2cWrite {
             port: ranged(f, "port", 0, 1)?,
             msg_id: u8_(f, "msg_id")?,
             result: i8_(f, "result")?,
         },
         "i2c_write_failed" => Report::I2cWriteFailed {
-            port: ranged(f, "port", 0, 1)?,
-            addr: ranged(f, "addr", 0, 0x7f)?,
-            stale: u8_(f, "stale")?,
-        },
-        "i2c_read_failed" => Report::I2cReadFailed {
             port: ranged(f, "port", 0, 1)?,
             addr: ranged(f, "addr", 0, 0x7f)?,
             stale: u8_(f, "stale")?,
@@ -1197,10 +1226,6 @@ fn read_report<'b>(
             temp: i8_(f, "temp_int")?,
             temp_hundredths: i8_(f, "temp_hundredths")?,
         },
-        "spi_report" => Report::Spi {
-            port: ranged(f, "port", 0, 1)?,
-            data: bytes_in(f, "data", buf)?,
-        },
         "encoder_report" => Report::Encoder {
             pin: pin_(f, "pin_a")?,
             steps: i8_(f, "steps")?,
@@ -1217,10 +1242,6 @@ fn read_report<'b>(
             sensor_type: type_byte(f, "sensor_type", SensorType::NAMES)?,
             supported: flag(f, "supported")?,
         },
-        "pong" => Report::Pong {
-            counter: u8_(f, "counter")?,
-            boot_id: u8_(f, "boot_id")?,
-        },
         "module_main_report" => Report::ModuleSupported {
             module_type: type_byte(f, "module_type", ModuleType::NAMES)?,
             supported: flag(f, "supported")?,
@@ -1233,17 +1254,6 @@ fn read_report<'b>(
                 report: nested(f, "message", move |m| module_report(module_type, m, buf))?,
             }
         }
-        "get_id_report" => Report::Id { id: u8_(f, "id")? },
-        "set_id_report" => Report::IdSet { id: u8_(f, "id")? },
-        "feature_check" => Report::Feature {
-            msg_type: u8_(f, "msg_type")?,
-            supported: flag(f, "ok")?,
-            extras: bytes_in(f, "extras", buf)?,
-        },
-        "debug_print" => Report::Debug {
-            id: u8_(f, "id")?,
-            value: u16_(f, "value")?,
-        },
         "unknown_report" => Report::Unknown {
             id: u8_(f, "id")?,
             payload: bytes_in(f, "payload", buf)?,

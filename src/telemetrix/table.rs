@@ -380,76 +380,247 @@ macro_rules! command_table {
 
 pub(crate) use command_table;
 
-/// Hand the report rows to `$callback!`: each report id (spec §5), its
-/// [`report_id`](super::report_id) constant and the dialects that define it.
-/// The reports' layouts are not in the table yet (`report.rs`, `fast.rs`).
+/// Hand the report rows to `$callback!`, after `$extra` (in brackets) when
+/// given. A row gives a report's id (spec §5), the name of its
+/// [`report_id`](super::report_id) constant, the dialects that define it,
+/// its `type` names with the [`Report`](super::Report) variants each names
+/// (report 8 has one per dialect family), and its payload, as in the
+/// command table: `plain { field: kind "key", … }` (one variant, named by
+/// the row, with the row's docs) or `custom { variants }` (a hand-written
+/// arm in each consumer). A report's `LEN` check is `report_len_ok`, which
+/// looks at a frame's first bytes to end a streamed frame early.
 macro_rules! report_table {
     ($callback:ident $(, $($extra:tt)+)?) => {
         $callback! {
             $([$($extra)+])?
-            /// SERIAL_LOOP_BACK_REPORT.
+            /// 0 SERIAL_LOOP_BACK_REPORT: loopback echo.
             0 SERIAL_LOOP_BACK in [Mirte13, Mirte12, Upstream11]
-                { "serial_loop_back_report" [LoopBack] };
-            /// DIGITAL_REPORT.
+                { "serial_loop_back_report" [LoopBack] } plain {
+                    /// The echoed byte.
+                    byte: u8 "byte",
+                };
+            /// 2 DIGITAL_REPORT.
             2 DIGITAL in [Mirte13, Mirte12, Upstream11]
-                { "digital_report" [Digital] };
-            /// ANALOG_REPORT.
+                { "digital_report" [Digital] } custom {
+                    /// 2: a digital input changed.
+                    Digital {
+                        /// GPIO (< 30).
+                        pin: u8,
+                        /// Level, `true` for high: `1` on the wire, in JSON and in `Display`
+                        /// (see [levels and flags](super#levels-and-flags)).
+                        value: bool,
+                    },
+                };
+            /// 3 ANALOG_REPORT.
             3 ANALOG in [Mirte13, Mirte12, Upstream11]
-                { "analog_report" [Analog] };
-            /// FIRMWARE_REPORT.
+                { "analog_report" [Analog] } custom {
+                    /// 3: an analog input changed.
+                    Analog {
+                        /// GPIO 26..=30 (mirte 1.3; ADC 0..=4 from older builds is accepted
+                        /// too), ADC 0..=4 in older dialects.
+                        pin: u8,
+                        /// 0..=4095.
+                        value: u16,
+                    },
+                };
+            /// 5 FIRMWARE_REPORT: firmware version (mirte 1.3 sends 1.3).
             5 FIRMWARE in [Mirte13, Mirte12, Upstream11]
-                { "firmware_version" [FirmwareVersion] };
-            /// REPORT_PICO_UNIQUE_ID.
+                { "firmware_version" [FirmwareVersion] } plain {
+                    /// Major.
+                    major: u8 "major",
+                    /// Minor.
+                    minor: u8 "minor",
+                };
+            /// 6 REPORT_PICO_UNIQUE_ID: unique id (6 board bytes, then `00 00` in mirte firmware).
             6 UNIQUE_ID in [Mirte13, Mirte12, Upstream11]
-                { "pico_unique_id" [UniqueId] };
-            /// I2C_WRITE_REPORT (upstream: I2C_WRITE_FAILED).
+                { "pico_unique_id" [UniqueId] } plain {
+                    /// The 8 bytes.
+                    id: array(8) "id",
+                };
+            /// 8 I2C_WRITE_REPORT (upstream: I2C_WRITE_FAILED).
             8 I2C_WRITE in [Mirte13, Mirte12, Upstream11]
-                { "i2c_write_report" [I2cWrite], "i2c_write_failed" [I2cWriteFailed] };
-            /// I2C_READ_FAILED.
+                { "i2c_write_report" [I2cWrite], "i2c_write_failed" [I2cWriteFailed] } custom {
+                    /// 8 (mirte): I2C write result, always sent.
+                    I2cWrite {
+                        /// Port.
+                        port: u8,
+                        /// The command's `msg_id`.
+                        msg_id: u8,
+                        /// Bytes written, or −1 (error), −2 (timeout).
+                        result: i8,
+                    },
+                    /// 8 (upstream): I2C_WRITE_FAILED, sent on failure only.
+                    I2cWriteFailed {
+                        /// Port.
+                        port: u8,
+                        /// Address.
+                        addr: u8,
+                        /// Meaningless byte.
+                        stale: u8,
+                    },
+                };
+            /// 9 I2C_READ_FAILED (mirte): I2C read NAK.
             9 I2C_READ_FAILED in [Mirte13, Mirte12]
-                { "i2c_read_failed" [I2cReadFailed] };
-            /// I2C_READ_REPORT.
+                { "i2c_read_failed" [I2cReadFailed] } plain {
+                    /// Port.
+                    port: range(0, 1) "port",
+                    /// Address.
+                    addr: range(0, 0x7f) "addr",
+                    /// Leftover from the previous I2C report.
+                    stale: u8 "stale",
+                };
+            /// 10 I2C_READ_REPORT.
             10 I2C_READ in [Mirte13, Mirte12, Upstream11]
-                { "i2c_read_report" [I2cRead, I2cReadUpstream] };
-            /// SONAR_DISTANCE.
+                { "i2c_read_report" [I2cRead, I2cReadUpstream] } custom {
+                    /// 10 (mirte): I2C read data, `port, msg_id, reg, n, 00, data`.
+                    I2cRead {
+                        /// Port.
+                        port: u8,
+                        /// The command's `msg_id`.
+                        msg_id: u8,
+                        /// Register.
+                        reg: u8,
+                        /// 1..=57 bytes.
+                        data: &'a [u8],
+                    },
+                    /// 10 (upstream): I2C read data, `port, addr, reg, n, data`.
+                    I2cReadUpstream {
+                        /// Port.
+                        port: u8,
+                        /// Address.
+                        addr: u8,
+                        /// Register.
+                        reg: u8,
+                        /// 1..=57 bytes.
+                        data: &'a [u8],
+                    },
+                };
+            /// 11 SONAR_DISTANCE.
             11 SONAR in [Mirte13, Mirte12, Upstream11]
-                { "sonar_distance" [Sonar] };
-            /// DHT_REPORT.
+                { "sonar_distance" [Sonar] } custom {
+                    /// 11: sonar distance.
+                    Sonar(Sonar),
+                };
+            /// 12 DHT_REPORT.
             12 DHT in [Mirte13, Mirte12, Upstream11]
-                { "dht_report" [Dht] };
-            /// SPI_REPORT.
+                { "dht_report" [Dht] } custom {
+                    /// 12: DHT reading (all zeros after a read error). Below 0 °C both
+                    /// temperature parts are negative.
+                    Dht {
+                        /// GPIO (< 30).
+                        pin: u8,
+                        /// Humidity, integer part.
+                        humidity: u8,
+                        /// Humidity, hundredths (0..=99).
+                        humidity_hundredths: u8,
+                        /// Temperature in °C, integer part.
+                        temp: i8,
+                        /// Temperature, hundredths (−99..=99, same sign as `temp`).
+                        temp_hundredths: i8,
+                    },
+                };
+            /// 13 SPI_REPORT: SPI read data.
             13 SPI in [Mirte13, Mirte12, Upstream11]
-                { "spi_report" [Spi] };
-            /// ENCODER_REPORT.
+                { "spi_report" [Spi] } plain {
+                    /// Port.
+                    port: range(0, 1) "port",
+                    /// 0..=60 bytes.
+                    data: counted("n") "data",
+                };
+            /// 14 ENCODER_REPORT.
             14 ENCODER in [Mirte13, Mirte12]
-                { "encoder_report" [Encoder] };
-            /// SENSOR_REPORT.
+                { "encoder_report" [Encoder] } custom {
+                    /// 14 (mirte): encoder steps since the last report (never 0).
+                    Encoder {
+                        /// GPIO A (< 30).
+                        pin: u8,
+                        /// Steps.
+                        steps: i8,
+                    },
+                };
+            /// 20 SENSOR_REPORT.
             20 SENSOR in [Mirte13, Mirte12]
-                { "sensor_report" [Sensor] };
-            /// SENSOR_MAIN_REPORT.
+                { "sensor_report" [Sensor] } custom {
+                    /// 20 (mirte 1.3): a sensor reading.
+                    Sensor {
+                        /// The sensor's number.
+                        sensor_num: u8,
+                        /// Type and data.
+                        reading: SensorReading,
+                    },
+                };
+            /// 21 SENSOR_MAIN_REPORT.
             21 SENSOR_MAIN in [Mirte13]
-                { "sensor_main_report" [SensorSupported] };
-            /// PONG_REPORT.
+                { "sensor_main_report" [SensorSupported] } custom {
+                    /// 21 (mirte 1.3): answer to a sensor check.
+                    SensorSupported {
+                        /// The type asked about.
+                        sensor_type: u8,
+                        /// Supported.
+                        supported: bool,
+                    },
+                };
+            /// 32 PONG_REPORT (mirte): answer to PING.
             32 PONG in [Mirte13, Mirte12]
-                { "pong" [Pong] };
-            /// MODULE_MAIN_REPORT.
+                { "pong" [Pong] } plain {
+                    /// The PING's counter.
+                    counter: u8 "counter",
+                    /// Random per boot, 0..=99: a change means the Pico rebooted.
+                    boot_id: range(0, 99) "boot_id",
+                };
+            /// 33 MODULE_MAIN_REPORT.
             33 MODULE_MAIN in [Mirte13]
-                { "module_main_report" [ModuleSupported] };
-            /// MODULE_REPORT.
+                { "module_main_report" [ModuleSupported] } custom {
+                    /// 33 (mirte 1.3): answer to a module check.
+                    ModuleSupported {
+                        /// The type asked about.
+                        module_type: u8,
+                        /// Supported.
+                        supported: bool,
+                    },
+                };
+            /// 34 MODULE_REPORT.
             34 MODULE in [Mirte13]
-                { "module_report" [Module] };
-            /// GET_ID_REPORT.
+                { "module_report" [Module] } custom {
+                    /// 34 (mirte 1.3): a module's report.
+                    Module {
+                        /// The module's number.
+                        module_num: u8,
+                        /// Type, subtype and data.
+                        report: ModuleReport<'a>,
+                    },
+                };
+            /// 35 GET_ID_REPORT (mirte 1.3): the saved id (`FF` if never set).
             35 GET_ID in [Mirte13]
-                { "get_id_report" [Id] };
-            /// SET_ID_REPORT.
+                { "get_id_report" [Id] } plain {
+                    /// The id.
+                    id: u8 "id",
+                };
+            /// 36 SET_ID_REPORT (mirte 1.3): the id just saved.
             36 SET_ID in [Mirte13]
-                { "set_id_report" [IdSet] };
-            /// FEATURE_CHECK.
+                { "set_id_report" [IdSet] } plain {
+                    /// The id.
+                    id: u8 "id",
+                };
+            /// 37 FEATURE_CHECK (mirte 1.3): answer to FEATURE_CHECK.
             37 FEATURE_CHECK in [Mirte13]
-                { "feature_check" [Feature] };
-            /// DEBUG_PRINT.
+                { "feature_check" [Feature] } plain {
+                    /// The command id asked about.
+                    msg_type: u8 "msg_type",
+                    /// Whether the firmware has it.
+                    supported: flag "ok",
+                    /// Extras (spec §5): for 1 `30 12 14 count pins…`, for 5 `1 3`, for
+                    /// 7 `12`, for 10 `2`, for 13 `4`, for 30 `4 2 1`; none otherwise.
+                    extras: rest "extras",
+                };
+            /// 99 DEBUG_PRINT (mirte): debug print.
             99 DEBUG_PRINT in [Mirte13, Mirte12]
-                { "debug_print" [Debug] };
+                { "debug_print" [Debug] } plain {
+                    /// Where it came from.
+                    id: u8 "id",
+                    /// Value.
+                    value: u16 "value",
+                };
         }
     };
 }

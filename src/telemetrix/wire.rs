@@ -3,7 +3,7 @@
 //! spec §3). It uses only the leaf modules [`Error`] and [`Dialect`].
 
 use super::dialect::Dialect;
-use super::error::Error;
+use super::error::{ensure, Error};
 
 /// GPIOs on the RP2040: pins are `0..30`.
 pub const PIN_COUNT: u8 = 30;
@@ -64,7 +64,7 @@ super::table::command_table!(command_ids);
 /// table.
 macro_rules! report_ids {
     ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
-        { $($name:literal [$($v:ident),+]),+ };)*) => {
+        { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
         /// Report ids (Pico → host), mirte firmware 1.3 numbering (spec §5).
         pub mod report_id {
             $(
@@ -84,6 +84,18 @@ macro_rules! report_ids {
 }
 
 super::table::report_table!(report_ids);
+
+/// A count byte (`field` in the error when it is below `min`), then that
+/// many bytes.
+pub(crate) fn counted<'a>(
+    r: &mut Reader<'a>,
+    field: &'static str,
+    min: u8,
+) -> Result<&'a [u8], Error> {
+    let n = r.u8()?;
+    ensure(n >= min, r.id(), field)?;
+    r.take(usize::from(n))
+}
 
 /// Split a frame into `LEN`, id and payload, checking that `LEN` matches.
 pub(crate) fn split_frame(frame: &[u8]) -> Result<(u8, u8, &[u8]), Error> {

@@ -1,0 +1,133 @@
+//! The field kinds of the message table's `plain` rows (see
+//! [`table`](super::table)): each kind's Rust type, how it is read and
+//! checked from a frame, and how it is written. The serde forms of the same
+//! kinds are `visit_field!` (in `fields`) and `read_member!` (in `schema`).
+//!
+//! The macros expand where the codec's helpers are in scope: `ensure`,
+//! `counted`, `rgb`, `PIN_COUNT` and the `Reader`/`Writer` methods.
+
+/// The Rust type of a `plain` row's field kind.
+macro_rules! field_type {
+    (counted_pins $($args:tt)?) => { &'a [u8] };
+    (counted $($args:tt)?) => { &'a [u8] };
+    (rest) => { &'a [u8] };
+    (array($n:literal)) => { [u8; $n] };
+    (nonzero_u32) => { u32 };
+    (trailing_u16_pair $($args:tt)?) => { Option<(u16, u16)> };
+    (trailing_flag) => { Option<bool> };
+    (u16) => { u16 };
+    (flag) => { bool };
+    (level) => { bool };
+    (rgb) => { Rgb };
+    // u8, pin, range
+    ($kind:ident $($args:tt)?) => { u8 };
+}
+
+/// Read and check one field of a `plain` row.
+macro_rules! read_field {
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, counted_pins($count:literal, $each:literal)) => {{
+        let pins = counted($r, $count, 0)?;
+        ensure(pins.iter().all(|&p| p < PIN_COUNT), $cmd, $each)?;
+        pins
+    }};
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, nonzero_u32) => {{
+        let v = $r.u32()?;
+        ensure(v >= 1, $cmd, $key)?;
+        v
+    }};
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, trailing_u16_pair $args:tt) => {
+        if $r.remaining() > 0 {
+            Some(($r.u16()?, $r.u16()?))
+        } else {
+            None
+        }
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, counted($count:literal)) => {
+        counted($r, $count, 0)?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, trailing_flag) => {
+        if $r.remaining() > 0 {
+            Some($r.flag($key)?)
+        } else {
+            None
+        }
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, u8) => {
+        $r.u8()?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, array($n:literal)) => {
+        $r.array::<$n>()?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, rest) => {
+        $r.rest()
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, u16) => {
+        $r.u16()?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, pin) => {
+        $r.pin($key)?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, flag) => {
+        $r.flag($key)?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, level) => {
+        $r.flag($key)?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, rgb) => {
+        rgb($r)?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, range($lo:literal, $hi:literal)) => {{
+        let v = $r.u8()?;
+        ensure(($lo..=$hi).contains(&v), $cmd, stringify!($f))?;
+        v
+    }};
+}
+
+/// Write one field of a `plain` row.
+macro_rules! write_field {
+    ($w:ident, $f:ident, counted_pins $args:tt) => {
+        write_field!($w, $f, counted)
+    };
+    ($w:ident, $f:ident, array $args:tt) => {
+        $w.bytes(&$f)
+    };
+    ($w:ident, $f:ident, rest) => {
+        $w.bytes($f)
+    };
+    ($w:ident, $f:ident, nonzero_u32) => {
+        $w.u32($f)
+    };
+    ($w:ident, $f:ident, trailing_u16_pair $args:tt) => {
+        if let Some((a, b)) = $f {
+            $w.u16(a);
+            $w.u16(b);
+        }
+    };
+    ($w:ident, $f:ident, counted $($args:tt)?) => {{
+        $w.u8($f.len() as u8);
+        $w.bytes($f);
+    }};
+    ($w:ident, $f:ident, trailing_flag) => {
+        if let Some(flag) = $f {
+            $w.flag(flag);
+        }
+    };
+    ($w:ident, $f:ident, flag) => {
+        $w.flag($f)
+    };
+    ($w:ident, $f:ident, level) => {
+        $w.flag($f)
+    };
+    ($w:ident, $f:ident, u16) => {
+        $w.u16($f)
+    };
+    ($w:ident, $f:ident, rgb) => {
+        $w.bytes(&[$f.r, $f.g, $f.b])
+    };
+    // u8, pin, range
+    ($w:ident, $f:ident, $kind:ident $($args:tt)?) => {
+        $w.u8($f)
+    };
+}
+
+pub(crate) use {field_type, read_field, write_field};
