@@ -237,11 +237,16 @@
 //! `custom` row: the row carries its variants, and its arms are written in
 //! `parse_payload` and `write_custom` (`command.rs`), `visit_custom`
 //! (`fields.rs`) and `read_command` (`schema.rs`). Reports have a table of
-//! their own in the same file (`report_table!`: the id, its [`report_id`]
-//! constant, the dialects, the `type` names and their variants), which gives
-//! the report ids, the report dialect table, [`Report::NAMES`],
-//! [`Report::name`] and [`Report::id`]; their layouts are still written out
-//! in `report.rs`, `fast.rs`, `fields.rs` and `schema.rs`.
+//! their own in the same file (`report_table!`), with rows of the same
+//! shape: the id, its [`report_id`] constant, the dialects, the `type`
+//! names with their variants and the payload (`plain` or `custom`). It
+//! gives the report ids, the report dialect table, [`Report::NAMES`],
+//! [`Report::name`], [`Report::id`], the [`Report`] enum, and for the
+//! `plain` rows encode, parse and the serde fields and reader; the `custom`
+//! rows' arms are in `report.rs` (`parse_payload`, `write_custom`),
+//! `fields.rs` and `schema.rs`, the `LEN` check in `report_len_ok`, and the
+//! streamed fast path in `fast.rs`. The field kinds' Rust types, reads and
+//! writes are in `kind.rs`, shared by both tables.
 
 mod buf;
 mod command;
