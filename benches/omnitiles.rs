@@ -13,7 +13,7 @@ use robowire::omnitiles::{
     Telemetry, TelemetryViews, BOTH_BUFFER, NO_READING,
 };
 use robowire::Encode;
-use robowire::StreamDecoder;
+use robowire::{Event, StreamDecoder};
 
 const MIB: usize = 1 << 20;
 
@@ -155,23 +155,39 @@ fn noisy() -> (Vec<u8>, usize) {
     (bytes, intact)
 }
 
+/// Count one event's frame, its message through `black_box`.
+#[inline(always)]
+fn take<M>(frames: &mut usize, event: Event<'_, M, robowire::omnitiles::Error>) {
+    if let Ok(frame) = event {
+        black_box(&frame.message);
+        *frames += 1;
+    }
+}
+
 /// Decode `input` fed in `chunk`-byte pieces; count the frames.
 fn decode<S: Side>(framing: Framing<S>, input: &[u8], chunk: usize) -> usize {
     let mut decoder = StreamDecoder::<_, BOTH_BUFFER>::new(framing);
     let mut frames = 0;
     for mut piece in input.chunks(chunk) {
         while let Some(event) = decoder.decode(&mut piece) {
-            if let Ok(frame) = event {
-                black_box(&frame.message);
-                frames += 1;
-            }
+            take(&mut frames, event);
         }
     }
     while let Some(event) = decoder.finish() {
-        if let Ok(frame) = event {
-            black_box(&frame.message);
-            frames += 1;
-        }
+        take(&mut frames, event);
+    }
+    frames
+}
+
+/// `decode` through `decode_each` (each event handed to a closure).
+fn decode_each<S: Side>(framing: Framing<S>, input: &[u8], chunk: usize) -> usize {
+    let mut decoder = StreamDecoder::<_, BOTH_BUFFER>::new(framing);
+    let mut frames = 0;
+    for piece in input.chunks(chunk) {
+        decoder.decode_each(piece, |event| take(&mut frames, event));
+    }
+    while let Some(event) = decoder.finish() {
+        take(&mut frames, event);
     }
     frames
 }
@@ -341,6 +357,11 @@ fn omnitiles(c: &mut Criterion) {
     let whole = usize::MAX;
     assert_eq!(decode(ble53_only, &ble, whole), ble_messages.len());
     assert_eq!(decode(ble53_only, &ble, 244), ble_messages.len());
+    assert_eq!(decode_each(ble53_only, &ble, whole), ble_messages.len());
+    assert_eq!(
+        decode_each(Framing::<Device>::new(), &commands, whole),
+        command_messages.len()
+    );
     assert_eq!(
         decode_views(ble53_only.views(), &ble, whole),
         ble_messages.len()
@@ -383,6 +404,9 @@ fn omnitiles(c: &mut Criterion) {
     group.bench_function("decode/ble53_chunk244", |b| {
         b.iter(|| decode(ble53_only, black_box(&ble), 244))
     });
+    group.bench_function("decode/ble53_each", |b| {
+        b.iter(|| decode_each(ble53_only, black_box(&ble), whole))
+    });
     group.bench_function("decode/ble53_view", |b| {
         b.iter(|| decode_views(ble53_only.views(), black_box(&ble), whole))
     });
@@ -397,6 +421,9 @@ fn omnitiles(c: &mut Criterion) {
         b.iter(|| decode(Framing::<Device>::new(), black_box(&commands), whole))
     });
 
+    group.bench_function("decode/commands_each", |b| {
+        b.iter(|| decode_each(Framing::<Device>::new(), black_box(&commands), whole))
+    });
     group.bench_function("baseline/naive_commands", |b| {
         b.iter(|| naive_commands(black_box(&commands)))
     });

@@ -16,6 +16,8 @@
 //!   every block;
 //! * `decode/blocks_chunk64`: the same, fed in 64-byte chunks, so most frames
 //!   straddle a chunk boundary and go through the internal buffer;
+//! * `decode/blocks_each`: `decode/blocks` through `decode_each` (each event
+//!   handed to a closure) instead of a `decode` loop;
 //! * `baseline/naive_blocks`: the parser users write by hand for Pixy2 serial
 //!   (a byte-at-a-time state machine: wait for the 16-bit sync, read type and
 //!   length, take the payload blindly, check the sum, no rescan after a bad
@@ -118,6 +120,23 @@ fn decode_with(input: &[u8], chunk: usize, mut on_frame: impl FnMut(u64)) -> Fou
 
 fn decode(input: &[u8], chunk: usize) -> Found {
     decode_with(input, chunk, |_| {})
+}
+
+/// `decode` through `decode_each`.
+fn decode_each(input: &[u8], chunk: usize) -> Found {
+    let mut decoder = pixy2::host_decoder();
+    let mut found = Found {
+        frames: 0,
+        x_sum: 0,
+    };
+    let mut on_frame = |_| {};
+    for piece in input.chunks(chunk) {
+        decoder.decode_each(piece, |event| take(&mut found, &mut on_frame, event));
+    }
+    while let Some(event) = decoder.finish() {
+        take(&mut found, &mut on_frame, event);
+    }
+    found
 }
 
 /// The hand-written Pixy2 serial parser: one state per header byte, the
@@ -255,6 +274,7 @@ fn bench(c: &mut Criterion) {
     // the timing loops), and the naive parser the same frames as robowire.
     assert_eq!(decode(&input, whole), generated, "decode/blocks");
     assert_eq!(decode(&input, 64), generated, "decode/blocks_chunk64");
+    assert_eq!(decode_each(&input, whole), generated, "decode/blocks_each");
     assert_eq!(naive(&input, whole), generated, "baseline/naive_blocks");
     let (mut ours, mut theirs) = (Vec::new(), Vec::new());
     decode_with(&input, whole, |offset| ours.push(offset));
@@ -275,6 +295,9 @@ fn bench(c: &mut Criterion) {
     });
     group.bench_function("decode/blocks_chunk64", |b| {
         b.iter(|| decode(black_box(&input), 64))
+    });
+    group.bench_function("decode/blocks_each", |b| {
+        b.iter(|| decode_each(black_box(&input), whole))
     });
     group.bench_function("baseline/naive_blocks", |b| {
         b.iter(|| naive(black_box(&input), whole))

@@ -3,9 +3,12 @@
 //! digital, analog, sonar and encoder, 4.6 bytes a frame on average):
 //!
 //! * `ceiling/sum_bytes`: add up every byte, the floor no parser can beat;
-//! * `decode/reports`: stream-decode the whole buffer in one call, typed,
-//!   every message through `black_box`, summing the report ids;
+//! * `decode/reports`: stream-decode the whole buffer in one call, typed
+//!   (`decode_each`), every message through `black_box`, summing the report
+//!   ids;
 //! * `decode/reports_chunk64`: the same, fed in 64-byte chunks;
+//! * `decode/reports_loop`: the same as a `while let Some(event) =
+//!   decoder.decode(&mut input)` loop;
 //! * `decode/reports_owned`: the owned path of a host that keeps its
 //!   frames: `feed` yields each report as a [`ReportBuf`] (its bytes
 //!   copied), kept in a `Vec` reused across iterations;
@@ -22,9 +25,11 @@ use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use robowire::telemetrix::{
-    both_decoder, BothDecoder, Framing, Host, HostDecoder, MessageBuf, Report, ReportBuf, Sonar,
+    both_decoder, BothDecoder, Error, Framing, Host, HostDecoder, MessageBuf, Report, ReportBuf,
+    Sonar,
 };
 use robowire::Encode;
+use robowire::Event;
 
 /// Tiny xorshift generator: seeded, reproducible, no dependency.
 struct Rng(u64);
@@ -90,22 +95,39 @@ fn reports() -> (Vec<u8>, Found) {
     (out, found)
 }
 
-/// Decode `input` fed in `chunk`-byte pieces, typed.
+/// Count one event's report.
+#[inline(always)]
+fn take(found: &mut Found, event: Event<'_, Report<'_>, Error>) {
+    if let Ok(frame) = event {
+        found.add(black_box(&frame.message).id());
+    }
+}
+
+/// Decode `input` fed in `chunk`-byte pieces, typed, by `decode_each`.
 fn decode_all(input: &[u8], chunk: usize) -> Found {
+    let mut decoder = HostDecoder::new(Framing::<Host>::new());
+    let mut found = Found::default();
+    for piece in input.chunks(chunk) {
+        decoder.decode_each(piece, |event| take(&mut found, event));
+    }
+    while let Some(event) = decoder.finish() {
+        take(&mut found, event);
+    }
+    found
+}
+
+/// The same as a `decode` loop.
+fn decode_loop(input: &[u8], chunk: usize) -> Found {
     let mut decoder = HostDecoder::new(Framing::<Host>::new());
     let mut found = Found::default();
     for piece in input.chunks(chunk) {
         let mut rest = piece;
         while let Some(event) = decoder.decode(&mut rest) {
-            if let Ok(frame) = event {
-                found.add(black_box(&frame.message).id());
-            }
+            take(&mut found, event);
         }
     }
     while let Some(event) = decoder.finish() {
-        if let Ok(frame) = event {
-            found.add(black_box(&frame.message).id());
-        }
+        take(&mut found, event);
     }
     found
 }
@@ -262,6 +284,7 @@ fn bench(c: &mut Criterion) {
     // Each benchmark finds exactly what was generated (checked once).
     assert_eq!(decode_all(&input, whole), generated);
     assert_eq!(decode_all(&input, 64), generated);
+    assert_eq!(decode_loop(&input, whole), generated);
     assert_eq!(naive_all(&input, whole), generated);
     let mut kept_reports = Vec::with_capacity(generated.frames as usize);
     let mut kept_messages = Vec::with_capacity(generated.frames as usize);
@@ -278,6 +301,9 @@ fn bench(c: &mut Criterion) {
     });
     group.bench_function("decode/reports_chunk64", |b| {
         b.iter(|| decode_all(black_box(&input), 64))
+    });
+    group.bench_function("decode/reports_loop", |b| {
+        b.iter(|| decode_loop(black_box(&input), whole))
     });
     group.bench_function("decode/reports_owned", |b| {
         b.iter(|| reports_owned(black_box(&input), &mut kept_reports))

@@ -630,6 +630,18 @@ fn frames<F: FrameRules, const N: usize>(
     out
 }
 
+/// `reports` encoded in dialect `d`, each after its piece of `garbage`.
+fn with_garbage(d: Dialect, reports: &[R], garbage: &[Vec<u8>]) -> Vec<u8> {
+    let mut bytes = Vec::new();
+    for (r, g) in reports.iter().zip(garbage) {
+        bytes.extend_from_slice(g);
+        let mut out = [0u8; 256];
+        let n = r.encode_in(d, &mut out).unwrap();
+        bytes.extend_from_slice(&out[..n]);
+    }
+    bytes
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(2000))]
 
@@ -733,19 +745,49 @@ proptest! {
         (d, rs) in dialect().prop_flat_map(|d| (Just(d), prop::collection::vec(report(d), 1..12))),
         garbage in prop::collection::vec(prop::collection::vec(any::<u8>(), 0..4), 12),
     ) {
-        let mut bytes = Vec::new();
-        for (r, g) in rs.iter().zip(&garbage) {
-            bytes.extend_from_slice(g);
-            let mut out = [0u8; 256];
-            let n = r.encode_in(d, &mut out).unwrap();
-            bytes.extend_from_slice(&out[..n]);
-        }
+        let bytes = with_garbage(d, &rs, &garbage);
         let mut dec = HostDecoder::new(Framing::<Host>::new().with_dialect(d));
         let found: Vec<_> = dec.feed(&bytes).collect();
         let s = dec.stats();
         prop_assert_eq!(s.bytes, bytes.len() as u64);
         prop_assert_eq!(s.bytes, s.frame_bytes + s.skipped + dec.buffered() as u64);
         prop_assert!(found.iter().filter(|e| e.is_ok()).count() as u64 == s.frames);
+    }
+
+    /// `decode_each`, which reads the streamed reports by the framing's
+    /// shortcut, gives the events and counters of the `feed` loop, at any
+    /// chunking, strict and lenient, for reports among garbage.
+    #[test]
+    fn decode_each_gives_the_loops_events(
+        (d, rs) in dialect().prop_flat_map(|d| (Just(d), prop::collection::vec(report(d), 1..12))),
+        garbage in prop::collection::vec(prop::collection::vec(any::<u8>(), 0..4), 12),
+        chunk in 1usize..24,
+        lenient in any::<bool>(),
+    ) {
+        let bytes = with_garbage(d, &rs, &garbage);
+        let framing = Framing::<Host>::new().with_dialect(d);
+        let framing = if lenient { framing.lenient() } else { framing };
+        let mut looped = HostDecoder::new(framing);
+        let mut each = HostDecoder::new(framing);
+        // Borrowed events, as their `Debug` text (the message as parsed).
+        let mut want = Vec::new();
+        let mut got = Vec::new();
+        for piece in bytes.chunks(chunk) {
+            let mut rest = piece;
+            while let Some(e) = looped.decode(&mut rest) {
+                want.push(format!("{e:?}"));
+            }
+            each.decode_each(piece, |e| got.push(format!("{e:?}")));
+        }
+        while let Some(e) = looped.finish() {
+            want.push(format!("{e:?}"));
+        }
+        while let Some(e) = each.finish() {
+            got.push(format!("{e:?}"));
+        }
+        prop_assert!(!want.is_empty());
+        prop_assert_eq!(got, want);
+        prop_assert_eq!(each.stats(), looped.stats());
     }
 
     /// `00` between frames never costs a frame (the firmware drops it too).

@@ -38,6 +38,12 @@ pub trait Side: sealed::Sealed + Copy + Eq + core::hash::Hash + core::fmt::Debug
     const REPORTS: bool;
     /// Parse one accepted frame.
     fn parse(dialect: Dialect, lenient: bool, frame: &[u8]) -> Result<Self::Message<'_>, Error>;
+    /// The common messages read straight from the frame's bytes (see
+    /// `FrameRules::parse_common`): none by default.
+    #[inline(always)]
+    fn parse_common(_dialect: Dialect, _frame: &[u8]) -> Option<Self::Message<'_>> {
+        None
+    }
     /// The owned form of a message.
     fn to_owned(message: Self::Message<'_>) -> Self::Owned;
     /// The owned form of a message parsed from `frame`, keeping its bytes.
@@ -58,6 +64,12 @@ impl Side for Host {
             Some(report) => Ok(report),
             None => parse_report_full(dialect, lenient, frame),
         }
+    }
+
+    // The reports a Pico streams, as `parse` reads them first.
+    #[inline(always)]
+    fn parse_common(dialect: Dialect, frame: &[u8]) -> Option<Report<'_>> {
+        fast::parse(dialect, frame)
     }
 
     fn to_owned(message: Report<'_>) -> ReportBuf {
@@ -455,6 +467,11 @@ impl<S: Side> stream::FrameRules for Framing<S> {
     #[inline(always)]
     fn parse<'a>(&self, frame: &'a [u8]) -> Result<S::Message<'a>, Error> {
         S::parse(self.dialect, self.lenient, frame)
+    }
+
+    #[inline(always)]
+    fn parse_common<'a>(&self, frame: &'a [u8]) -> Option<S::Message<'a>> {
+        S::parse_common(self.dialect, frame)
     }
 
     fn to_owned(message: S::Message<'_>) -> S::Owned {
