@@ -222,8 +222,9 @@ pub trait FrameRules {
     /// without the general parse, else `None` (the default: every frame
     /// takes [`parse`](FrameRules::parse)). A shortcut, never a definition:
     /// for any `Some(message)`, `parse` returns `Ok(message)`.
-    /// [`StreamDecoder::decode_each`] tries it first, so that such a message
-    /// is built straight into the event it hands over.
+    /// The decoder tries it before `parse` (so `parse` may be the full
+    /// parse alone), and [`StreamDecoder::decode_each`] builds such a
+    /// message straight into the event it hands over.
     #[inline(always)]
     fn parse_common<'a>(&self, frame: &'a [u8]) -> Option<Self::Message<'a>> {
         let _ = frame;
@@ -622,7 +623,7 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
     /// [`parse_common`](FrameRules::parse_common) shortcut (the reports a
     /// Telemetrix Pico streams) is built straight from the frame's bytes,
     /// so a large message enum is never copied between the decoder's paths
-    /// (`cargo bench --bench telemetrix`: 1.6x the loop; docs/performance.md).
+    /// (`cargo bench --bench telemetrix`: 1.7–1.9× the loop; docs/performance.md).
     ///
     /// ```
     /// use robowire::telemetrix::{host_decoder, Report};
@@ -965,30 +966,24 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
             Step::Done => return None,
             Step::Rejected(rejected) => return Some(Err(rejected)),
             Step::InPlace { offset, raw } => (offset, raw),
-            Step::Buffered(n) => (self.take_buffered(n), prefix(&self.buf, n)),
+            Step::Buffered(n) => {
+                let offset = self.buf_offset.to_u64();
+                self.need = 0;
+                self.synced = true;
+                if n >= self.len {
+                    // The frame is all the buffer holds: the buffer is empty
+                    // from now on (the event still borrows the bytes, which
+                    // nothing overwrites before the next call).
+                    self.len = 0;
+                    self.buf_offset = self.buf_offset.plus(n);
+                } else {
+                    // Later bytes stay: the frame is dropped on the next call.
+                    self.pending_drop = n;
+                }
+                (offset, prefix(&self.buf, n))
+            }
         };
         Some(parse_counted(&self.framing, &mut self.stats, offset, raw))
-    }
-
-    /// Take the frame of `n` bytes at the front of the buffer out of its
-    /// bookkeeping; returns the frame's offset. Its bytes stay where they are
-    /// until the next call, for the event to borrow.
-    #[inline(always)]
-    fn take_buffered(&mut self, n: usize) -> u64 {
-        let offset = self.buf_offset.to_u64();
-        self.need = 0;
-        self.synced = true;
-        if n >= self.len {
-            // The frame is all the buffer holds: the buffer is empty from now
-            // on (the event still borrows the bytes, which nothing overwrites
-            // before the next call).
-            self.len = 0;
-            self.buf_offset = self.buf_offset.plus(n);
-        } else {
-            // Later bytes stay: the frame is dropped on the next call.
-            self.pending_drop = n;
-        }
-        offset
     }
 
     /// No candidate is buffered: find the next one in `input` and resolve it
@@ -1218,6 +1213,7 @@ fn prefix<const N: usize>(buf: &[u8; N], len: usize) -> &[u8] {
     buf.get(..len).unwrap_or(buf)
 }
 
+/// Count and parse a frame: the framing's shortcut first, then the full parse.
 #[inline(always)]
 fn parse_counted<'a, F: FrameRules, C: Counter>(
     framing: &F,
@@ -1225,9 +1221,12 @@ fn parse_counted<'a, F: FrameRules, C: Counter>(
     offset: u64,
     raw: &'a [u8],
 ) -> Event<'a, F::Message<'a>, F::Error> {
-    stats.frames = stats.frames.plus(1);
-    stats.frame_bytes = stats.frame_bytes.plus(raw.len());
-    parse_uncounted(framing, stats, offset, raw)
+    count_frame(stats, raw);
+    let parsed = match framing.parse_common(raw) {
+        Some(message) => Ok(message),
+        None => framing.parse(raw),
+    };
+    frame_event(stats, offset, raw, parsed)
 }
 
 /// Count and parse a frame, handing its event to `on_event` from the place
@@ -1241,27 +1240,32 @@ fn deliver<F: FrameRules, C: Counter>(
     raw: &[u8],
     on_event: &mut impl FnMut(Event<'_, F::Message<'_>, F::Error>),
 ) {
-    stats.frames = stats.frames.plus(1);
-    stats.frame_bytes = stats.frame_bytes.plus(raw.len());
+    count_frame(stats, raw);
     match framing.parse_common(raw) {
         Some(message) => on_event(Ok(Frame {
             offset,
             raw,
             message,
         })),
-        None => on_event(parse_uncounted(framing, stats, offset, raw)),
+        None => on_event(frame_event(stats, offset, raw, framing.parse(raw))),
     }
 }
 
-/// [`parse_counted`] for a frame already counted.
 #[inline(always)]
-fn parse_uncounted<'a, F: FrameRules, C: Counter>(
-    framing: &F,
+fn count_frame<C: Counter>(stats: &mut Stats<C>, raw: &[u8]) {
+    stats.frames = stats.frames.plus(1);
+    stats.frame_bytes = stats.frame_bytes.plus(raw.len());
+}
+
+/// The event of a counted frame's parse (a failed parse counts as malformed).
+#[inline(always)]
+fn frame_event<'a, M, E, C: Counter>(
     stats: &mut Stats<C>,
     offset: u64,
     raw: &'a [u8],
-) -> Event<'a, F::Message<'a>, F::Error> {
-    match framing.parse(raw) {
+    parsed: Result<M, E>,
+) -> Event<'a, M, E> {
+    match parsed {
         Ok(message) => Ok(Frame {
             offset,
             raw,

@@ -56,17 +56,12 @@ impl Side for Host {
     const COMMANDS: bool = false;
     const REPORTS: bool = true;
 
-    // `parse_report_with`, with the fast path inlined into the decoder's
-    // loop (other callers get it out of line).
-    #[inline(always)]
+    // The full parse; the engine tries `parse_common` first.
     fn parse(dialect: Dialect, lenient: bool, frame: &[u8]) -> Result<Report<'_>, Error> {
-        match fast::parse(dialect, frame) {
-            Some(report) => Ok(report),
-            None => parse_report_full(dialect, lenient, frame),
-        }
+        parse_report_full(dialect, lenient, frame)
     }
 
-    // The reports a Pico streams, as `parse` reads them first.
+    // The reports a Pico streams, inlined into the decoder's loop.
     #[inline(always)]
     fn parse_common(dialect: Dialect, frame: &[u8]) -> Option<Report<'_>> {
         fast::parse(dialect, frame)
