@@ -151,7 +151,12 @@ impl SensorNew {
                     id: r.id(),
                     field: "sensor_type",
                 })?;
-            let settings = List::from_slice(r.rest()).map_err(|_| r.bad_length())?;
+            // Byte by byte rather than `List::from_slice`: a copy of a
+            // variable length links `memcpy` (about 700 B on the Pico).
+            let mut settings = List::new();
+            for &byte in r.rest() {
+                settings.push(byte).map_err(|_| r.bad_length())?;
+            }
             return Ok(SensorNew::AddMirte12 {
                 sensor_num,
                 sensor_type,
