@@ -720,21 +720,119 @@ fn the_cases_cover_every_type() {
 
 #[test]
 fn module_data_is_typed_in_a_capture() {
+    let bytes = hex("0A 21 01 00 01 00 01 00 02 01 02 09 22 00 01 01 00 2E E0 01 F4");
+    let lines = capture_lines(&bytes);
+    let typed = r#"{"type":"module_data","module_num":0,"module_type":"hiwonder_servo","message":{"subtype":"set_angle","moves":[{"idx":0,"centideg":12000,"time_ms":500}]}}"#;
+    assert_eq!(lines[1], typed);
+    let back: MessageBuf = serde_json::from_str(typed).unwrap();
+    assert_eq!(back.frame(), &bytes[11..]);
+}
+
+/// The lines of a capture of commands, each annotated by what came before.
+fn capture_lines(bytes: &[u8]) -> Vec<String> {
     let mut decoder = device_decoder();
     let mut context = CaptureContext::new(decoder.framing());
-    let bytes = hex("0A 21 01 00 01 00 01 00 02 01 02 09 22 00 01 01 00 2E E0 01 F4");
-    let lines: Vec<String> = decoder
-        .feed(&bytes)
+    decoder
+        .feed(bytes)
         .map(|event| {
             let mut message = MessageBuf::from(event.unwrap().message);
             context.annotate(&mut message);
             serde_json::to_string(&message).unwrap()
         })
-        .collect();
-    let typed = r#"{"type":"module_data","module_num":0,"module_type":"hiwonder_servo","message":{"subtype":"set_angle","moves":[{"idx":0,"centideg":12000,"time_ms":500}]}}"#;
-    assert_eq!(lines[1], typed);
-    let back: MessageBuf = serde_json::from_str(typed).unwrap();
-    assert_eq!(back.frame(), &bytes[11..]);
+        .collect()
+}
+
+/// Every subtype of the module data tables (Hiwonder servo, SSD1306): the
+/// tool's `message` object for its data, typed in a capture.
+const MODULE_DATA_CASES: &[(&str, &str)] = &[
+    (
+        "hiwonder_servo",
+        r#"{"subtype":"set_angle","moves":[{"idx":0,"centideg":12000,"time_ms":500},{"idx":1,"centideg":0,"time_ms":0}]}"#,
+    ),
+    (
+        "hiwonder_servo",
+        r#"{"subtype":"enable","enabled":true,"servos":[0,2]}"#,
+    ),
+    (
+        "hiwonder_servo",
+        r#"{"subtype":"enable","enabled":false,"servos":[]}"#,
+    ),
+    ("hiwonder_servo", r#"{"subtype":"id_write","new_id":7}"#),
+    ("hiwonder_servo", r#"{"subtype":"id_verify","bus_id":254}"#),
+    (
+        "hiwonder_servo",
+        r#"{"subtype":"range_write","idx":1,"min_cdeg":0,"max_cdeg":24000}"#,
+    ),
+    ("hiwonder_servo", r#"{"subtype":"range_read","idx":3}"#),
+    (
+        "hiwonder_servo",
+        r#"{"subtype":"offset_write","idx":0,"offset_cdeg":-125}"#,
+    ),
+    ("hiwonder_servo", r#"{"subtype":"offset_read","idx":0}"#),
+    (
+        "hiwonder_servo",
+        r#"{"subtype":"voltage_limit_write","idx":2,"min_mv":4500,"max_mv":14000}"#,
+    ),
+    (
+        "hiwonder_servo",
+        r#"{"subtype":"motor_mode_write","idx":2,"speed":-1000}"#,
+    ),
+    ("hiwonder_servo", r#"{"subtype":"add_servo","bus_id":9}"#),
+    ("ssd1306", r#"{"subtype":"text","text":"Hé"}"#),
+    ("ssd1306", r#"{"subtype":"text_done"}"#),
+    (
+        "ssd1306",
+        r#"{"subtype":"binary","chunk":63,"data":[0,1,2,3,4,5,6,7,8,9,10,11,12,13,14,255]}"#,
+    ),
+    ("ssd1306", r#"{"subtype":"binary_done"}"#),
+];
+
+#[test]
+fn every_module_data_subtype_has_its_json() {
+    let modules = [
+        r#"{"type":"module_new","subtype":"add","module_num":0,"module_type":"hiwonder_servo","init":{"uart":0,"rx":1,"tx":0,"bus_ids":[1,2]}}"#,
+        r#"{"type":"module_new","subtype":"add","module_num":1,"module_type":"ssd1306","init":{"port":0,"addr":60}}"#,
+    ];
+    for (module_type, message) in MODULE_DATA_CASES {
+        let num = u8::from(*module_type == "ssd1306");
+        let line = format!(
+            r#"{{"type":"module_data","module_num":{num},"module_type":"{module_type}","message":{message}}}"#
+        );
+        // The line reads back to a frame, ...
+        let frame = read_in(&line, M13).unwrap_or_else(|e| panic!("{line}: {e}"));
+        // ... which a capture that saw the module created prints as the line.
+        let mut bytes: Vec<u8> = Vec::new();
+        for module in modules {
+            bytes.extend_from_slice(read_in(module, M13).unwrap().frame());
+        }
+        bytes.extend_from_slice(frame.frame());
+        let lines = capture_lines(&bytes);
+        assert_eq!(lines.len(), 3, "{line}");
+        assert_eq!(lines[2], line);
+    }
+    // An out-of-range field is refused when the line is encoded.
+    for (message, error) in [
+        (
+            r#"{"subtype":"range_write","idx":1,"min_cdeg":24001,"max_cdeg":0}"#,
+            "min_cdeg",
+        ),
+        (
+            r#"{"subtype":"binary","chunk":64,"data":[0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0]}"#,
+            "chunk",
+        ),
+        (r#"{"subtype":"swing"}"#, "subtype"),
+    ] {
+        let module_type = if message.contains("binary") {
+            "ssd1306"
+        } else {
+            "hiwonder_servo"
+        };
+        let line = format!(
+            r#"{{"type":"module_data","module_num":0,"module_type":"{module_type}","message":{message}}}"#
+        );
+        let refused = read_in(&line, M13).expect_err(&line);
+        assert!(refused.contains(error), "{line}: {refused}");
+    }
 }
 
 #[test]

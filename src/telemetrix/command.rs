@@ -2,7 +2,7 @@
 
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
-use super::kind::{field_type, read_field, write_field};
+use super::kind::{field_type, read_field, write_field, write_row};
 use super::list::List;
 use super::module::{ModuleNew, MODULE_INIT_MAX};
 use super::quirk::command_quirk;
@@ -53,7 +53,7 @@ macro_rules! command_codec {
             fn write_payload(&self, w: &mut Writer<'_>) {
                 match *self {
                     $($(Command::$v { .. })|+ => {
-                        write_row!(self, w, $codec $($p)? { $($body)* })
+                        write_row!(self, w, Command, $codec $($p)? { $($body)* })
                     })*
                 }
             }
@@ -68,19 +68,6 @@ macro_rules! len_range {
     };
     ($dialect:ident, { $($arms:tt)* }) => {
         match $dialect { $($arms)* }
-    };
-}
-
-/// Write a row's payload.
-macro_rules! write_row {
-    ($command:ident, $w:ident, custom { $($decl:tt)* }) => {
-        $command.write_custom($w)
-    };
-    ($command:ident, $w:ident, plain $p:ident {}) => {{}};
-    ($command:ident, $w:ident, plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
-        if let Command::$p { $($f),* } = *$command {
-            $(write_field!($w, $f, $kind $(($($arg)*))?);)*
-        }
     };
 }
 

@@ -262,7 +262,7 @@ macro_rules! command_fields {
             fn payload(&self, w: &mut W<'_>) {
                 match *self.command {
                     $($(Command::$v { .. })|+ => {
-                        visit_row!(self, w, Command command, $codec $($p)? { $($body)* })
+                        visit_row!(self, w, Command (self.command), $codec $($p)? { $($body)* })
                     })*
                 }
             }
@@ -270,19 +270,20 @@ macro_rules! command_fields {
     };
 }
 
-/// Visit a row's payload: `$view.$value` is the `$enum` (a `plain` row's
-/// variant is named after `plain`, or in brackets by a report row).
+/// Visit a row's payload: `$value` is the `$enum` (a `plain` row's variant
+/// is named after `plain`, or in brackets by a report row); `$view` visits a
+/// `custom` row's.
 macro_rules! visit_row {
-    ($view:ident, $w:ident, $enum:ident $value:ident, $([$($vs:ident)+])? custom $($rest:tt)*) => {
+    ($view:ident, $w:ident, $enum:ident ($value:expr), $([$($vs:ident)+])? custom $($rest:tt)*) => {
         $view.visit_custom($w)
     };
-    ($view:ident, $w:ident, $enum:ident $value:ident, [$p:ident] plain $body:tt) => {
-        visit_row!($view, $w, $enum $value, plain $p $body)
+    ($view:ident, $w:ident, $enum:ident ($value:expr), [$p:ident] plain $body:tt) => {
+        visit_row!($view, $w, $enum ($value), plain $p $body)
     };
-    ($view:ident, $w:ident, $enum:ident $value:ident, plain $p:ident {}) => {{}};
-    ($view:ident, $w:ident, $enum:ident $value:ident,
+    ($view:ident, $w:ident, $enum:ident ($value:expr), plain $p:ident {}) => {{}};
+    ($view:ident, $w:ident, $enum:ident ($value:expr),
         plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
-        if let $enum::$p { $($f),* } = *$view.$value {
+        if let $enum::$p { $($f),* } = *$value {
             $(visit_field!($w, $f, $key, $kind $(($($arg)*))?);)*
         }
     };
@@ -322,7 +323,10 @@ macro_rules! visit_field {
     ($w:ident, $f:ident, $key:literal, rgb) => {
         rgb($w, $f)
     };
-    // u8, u16, pin, range
+    ($w:ident, $f:ident, $key:literal, i16) => {
+        $w.i($key, $f)
+    };
+    // u8, u16, u16_max, pin, range
     ($w:ident, $f:ident, $key:literal, $kind:ident $($args:tt)?) => {
         $w.u($key, $f)
     };
@@ -339,7 +343,7 @@ macro_rules! report_fields {
             fn payload(&self, w: &mut W<'_>) {
                 match *self.report {
                     $($($(Report::$v { .. })|+)|+ => {
-                        visit_row!(self, w, Report report, [$($($v)+)+] $codec { $($body)* })
+                        visit_row!(self, w, Report (self.report), [$($($v)+)+] $codec { $($body)* })
                     })*
                     Report::Unknown { id, payload } => {
                         w.u("id", id);
@@ -582,9 +586,9 @@ impl ModuleData {
 impl Visit for ModuleData {
     fn visit(&self, o: &mut W<'_>) {
         match self {
-            ModuleData::Hiwonder(m) => hiwonder_command(m, o),
+            ModuleData::Hiwonder(m) => m.visit(o),
             ModuleData::Pca9685(m) => o.objs("channels", &m.channels),
-            ModuleData::Ssd1306(m) => ssd1306_command(m, o),
+            ModuleData::Ssd1306(m) => m.visit(o),
             ModuleData::Relay(m) => o.s(
                 "subtype",
                 match m {
@@ -596,86 +600,45 @@ impl Visit for ModuleData {
     }
 }
 
-fn hiwonder_command(message: &HiwonderCommand, o: &mut W<'_>) {
-    match *message {
-        HiwonderCommand::SetAngle(ref moves) => {
-            o.s("subtype", "set_angle");
-            o.objs("moves", moves);
+/// A module data table's JSON fields: `subtype` names the row, then the
+/// `plain` rows' fields by their kind, the `custom` rows' by `visit_custom`.
+macro_rules! module_data_fields {
+    ($(#[$em:meta])* $enum:ident; $($(#[$vm:meta])* $n:literal $name:literal [$($v:ident),+]
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
+        impl Visit for $enum {
+            fn visit(&self, o: &mut W<'_>) {
+                match *self {
+                    $($($enum::$v { .. })|+ => {
+                        o.s("subtype", $name);
+                        visit_row!(self, o, $enum (self), $codec $($p)? { $($body)* })
+                    })*
+                }
+            }
         }
-        HiwonderCommand::Enable {
-            enabled,
-            ref servos,
-        } => {
-            o.s("subtype", "enable");
-            o.flag("enabled", enabled);
-            o.bytes("servos", servos);
-        }
-        HiwonderCommand::IdWrite { new_id } => {
-            o.s("subtype", "id_write");
-            o.u("new_id", new_id);
-        }
-        HiwonderCommand::IdVerify { bus_id } => {
-            o.s("subtype", "id_verify");
-            o.u("bus_id", bus_id);
-        }
-        HiwonderCommand::RangeWrite {
-            idx,
-            min_cdeg,
-            max_cdeg,
-        } => {
-            o.s("subtype", "range_write");
-            o.u("idx", idx);
-            o.u("min_cdeg", min_cdeg);
-            o.u("max_cdeg", max_cdeg);
-        }
-        HiwonderCommand::RangeRead { idx } => {
-            o.s("subtype", "range_read");
-            o.u("idx", idx);
-        }
-        HiwonderCommand::OffsetWrite { idx, offset_cdeg } => {
-            o.s("subtype", "offset_write");
-            o.u("idx", idx);
-            o.i("offset_cdeg", offset_cdeg);
-        }
-        HiwonderCommand::OffsetRead { idx } => {
-            o.s("subtype", "offset_read");
-            o.u("idx", idx);
-        }
-        HiwonderCommand::VoltageLimitWrite {
-            idx,
-            min_mv,
-            max_mv,
-        } => {
-            o.s("subtype", "voltage_limit_write");
-            o.u("idx", idx);
-            o.u("min_mv", min_mv);
-            o.u("max_mv", max_mv);
-        }
-        HiwonderCommand::MotorModeWrite { idx, speed } => {
-            o.s("subtype", "motor_mode_write");
-            o.u("idx", idx);
-            o.i("speed", speed);
-        }
-        HiwonderCommand::AddServo { bus_id } => {
-            o.s("subtype", "add_servo");
-            o.u("bus_id", bus_id);
+    };
+}
+
+super::table::hiwonder_table!(module_data_fields);
+super::table::ssd1306_table!(module_data_fields);
+
+impl HiwonderCommand {
+    fn visit_custom(&self, o: &mut W<'_>) {
+        match self {
+            HiwonderCommand::SetAngle(moves) => o.objs("moves", moves),
+            HiwonderCommand::Enable { enabled, servos } => {
+                o.flag("enabled", *enabled);
+                o.bytes("servos", servos);
+            }
+            _ => {}
         }
     }
 }
 
-fn ssd1306_command(message: &Ssd1306Command, o: &mut W<'_>) {
-    match message {
-        Ssd1306Command::Text(text) => {
-            o.s("subtype", "text");
+impl Ssd1306Command {
+    fn visit_custom(&self, o: &mut W<'_>) {
+        if let Ssd1306Command::Text(text) = self {
             o.v("text", V::Latin1(text));
         }
-        Ssd1306Command::TextDone => o.s("subtype", "text_done"),
-        Ssd1306Command::Binary { chunk, data } => {
-            o.s("subtype", "binary");
-            o.u("chunk", *chunk);
-            o.bytes("data", data);
-        }
-        Ssd1306Command::BinaryDone => o.s("subtype", "binary_done"),
     }
 }
 

@@ -16,6 +16,8 @@ macro_rules! field_type {
     (trailing_u16_pair $($args:tt)?) => { Option<(u16, u16)> };
     (trailing_flag) => { Option<bool> };
     (u16) => { u16 };
+    (u16_max $($args:tt)?) => { u16 };
+    (i16) => { i16 };
     (flag) => { bool };
     (level) => { bool };
     (rgb) => { Rgb };
@@ -63,6 +65,14 @@ macro_rules! read_field {
     };
     ($r:ident, $cmd:ident, $f:ident, $key:literal, u16) => {
         $r.u16()?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, u16_max($max:literal)) => {{
+        let v = $r.u16()?;
+        ensure(v <= $max, $cmd, $key)?;
+        v
+    }};
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, i16) => {
+        $r.i16()?
     };
     ($r:ident, $cmd:ident, $f:ident, $key:literal, pin) => {
         $r.pin($key)?
@@ -121,6 +131,12 @@ macro_rules! write_field {
     ($w:ident, $f:ident, u16) => {
         $w.u16($f)
     };
+    ($w:ident, $f:ident, u16_max $args:tt) => {
+        $w.u16($f)
+    };
+    ($w:ident, $f:ident, i16) => {
+        $w.i16($f)
+    };
     ($w:ident, $f:ident, rgb) => {
         $w.bytes(&[$f.r, $f.g, $f.b])
     };
@@ -130,4 +146,20 @@ macro_rules! write_field {
     };
 }
 
-pub(crate) use {field_type, read_field, write_field};
+/// Write a row's payload: a `plain` row's fields in wire order (its variant
+/// of `$enum` is named after `plain`), a `custom` row's by `write_custom`.
+macro_rules! write_row {
+    ($value:ident, $w:ident, $enum:ident, custom { $($decl:tt)* }) => {
+        $value.write_custom($w)
+    };
+    ($value:ident, $w:ident, $enum:ident, plain $p:ident {}) => {{}};
+    ($value:ident, $w:ident, $enum:ident, plain $p:ident {
+        $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)?
+    }) => {
+        if let $enum::$p { $($f),* } = *$value {
+            $(write_field!($w, $f, $kind $(($($arg)*))?);)*
+        }
+    };
+}
+
+pub(crate) use {field_type, read_field, write_field, write_row};

@@ -268,7 +268,9 @@
 //! rows' arms are in `report.rs` (`parse_payload`, `write_custom`),
 //! `fields.rs` and `schema.rs`, the `LEN` check in `report_len_ok`, and the
 //! streamed fast path in `fast.rs`. The field kinds' Rust types, reads and
-//! writes are in `kind.rs`, shared by both tables.
+//! writes are in `kind.rs`, shared by all tables. The MODULE_DATA messages
+//! that start with a subtype byte ([`HiwonderCommand`], [`Ssd1306Command`])
+//! have a table per module type in the same file, one row per subtype.
 
 mod buf;
 mod command;

@@ -8,6 +8,7 @@
 //! and are decoded to [`ModuleReport`].
 
 use super::error::{ensure, Error};
+use super::kind::{field_type, read_field, write_field, write_row};
 use super::list::{List, Payload};
 use super::wire::{command_id, Reader, Writer, COMMAND_PAYLOAD_MAX};
 use crate::EncodeError;
@@ -294,6 +295,85 @@ fn data_reader(data: &[u8]) -> Reader<'_> {
     Reader::new(command_id::MODULE_DATA, len, data)
 }
 
+/// A module data table's enum and its data's encode and parse: the `plain`
+/// rows' from their fields (a unit variant when a row has none), the
+/// `custom` rows' by the enum's `write_custom` and `parse_custom`.
+macro_rules! module_data_codec {
+    ($(#[$em:meta])* $enum:ident; $($rows:tt)*) => {
+        module_data_codec!(@enum [$(#[$em])* $enum] [] $($rows)*);
+        module_data_codec!(@codec $enum; $($rows)*);
+    };
+    (@enum $head:tt [$($vars:tt)*]
+        $(#[$vm:meta])* $n:literal $name:literal [$($v:ident),+] plain $p:ident {};
+        $($rest:tt)*) => {
+        module_data_codec!(@enum $head [$($vars)* $(#[$vm])* $p,] $($rest)*);
+    };
+    (@enum $head:tt [$($vars:tt)*]
+        $(#[$vm:meta])* $n:literal $name:literal [$($v:ident),+] plain $p:ident {
+            $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)?
+        }; $($rest:tt)*) => {
+        module_data_codec!(@enum $head [
+            $($vars)* $(#[$vm])* $p { $($(#[$fm])* $f: field_type!($kind $(($($arg)*))?),)* },
+        ] $($rest)*);
+    };
+    (@enum $head:tt [$($vars:tt)*]
+        $(#[$vm:meta])* $n:literal $name:literal [$($v:ident),+] custom { $($decl:tt)* };
+        $($rest:tt)*) => {
+        module_data_codec!(@enum $head [$($vars)* $($decl)*] $($rest)*);
+    };
+    (@enum [$(#[$em:meta])* $enum:ident] [$($vars:tt)*]) => {
+        $(#[$em])*
+        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum $enum {
+            $($vars)*
+        }
+    };
+    (@codec $enum:ident; $($(#[$vm:meta])* $n:literal $name:literal [$($v:ident),+]
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
+        impl $enum {
+            /// The subtype byte, then the row's fields.
+            fn write_data(&self, w: &mut Writer<'_>) {
+                match *self {
+                    $($($enum::$v { .. })|+ => {
+                        w.u8($n);
+                        write_row!(self, w, $enum, $codec $($p)? { $($body)* })
+                    })*
+                }
+            }
+
+            /// Parse MODULE_DATA bytes: the subtype byte picks the row.
+            fn parse_data(data: &[u8]) -> Result<Self, Error> {
+                let mut r = data_reader(data);
+                let id = r.id();
+                let message = match r.u8()? {
+                    $($n => data_row!(r, id, $n, $enum, $codec $($p)? { $($body)* }),)*
+                    _ => {
+                        return Err(Error::OutOfRange {
+                            id,
+                            field: "subtype",
+                        })
+                    }
+                };
+                r.end()?;
+                Ok(message)
+            }
+        }
+    };
+}
+
+/// Parse one row of a module data table after its subtype byte.
+macro_rules! data_row {
+    ($r:ident, $id:ident, $n:literal, $enum:ident, custom { $($decl:tt)* }) => {
+        $enum::parse_custom($n, &mut $r)?
+    };
+    ($r:ident, $id:ident, $n:literal, $enum:ident, plain $p:ident {
+        $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)?
+    }) => {
+        $enum::$p { $($f: read_field!($r, $id, $f, $key, $kind $(($($arg)*))?),)* }
+    };
+}
+
 /// Where a Hiwonder servo should move.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -306,79 +386,7 @@ pub struct ServoMove {
     pub time_ms: u16,
 }
 
-/// Hiwonder servo data (module type 1), spec §7.1. Servos are addressed by
-/// their index in the init list. The firmware drops all of it unless the last
-/// PING is less than 2 s old.
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum HiwonderCommand {
-    /// 1 SET_ANGLE: 1..=5 moves.
-    SetAngle(List<ServoMove, 5>),
-    /// 2 ENABLE: an empty list means all servos.
-    Enable {
-        /// Torque on or off.
-        enabled: bool,
-        /// Servo indices (at most 25), or none for all.
-        servos: List<u8, 25>,
-    },
-    /// 3 ID_WRITE: sets the id of whatever servo is on the bus.
-    IdWrite {
-        /// The new bus id.
-        new_id: u8,
-    },
-    /// 4 ID_VERIFY: answered by [`ModuleReport::HiwonderIdVerify`].
-    IdVerify {
-        /// Bus id to look for.
-        bus_id: u8,
-    },
-    /// 5 RANGE_WRITE.
-    RangeWrite {
-        /// Servo index.
-        idx: u8,
-        /// Lower limit in centidegrees, 0..=24000.
-        min_cdeg: u16,
-        /// Upper limit in centidegrees, 0..=24000.
-        max_cdeg: u16,
-    },
-    /// 6 RANGE_READ: answered by [`ModuleReport::HiwonderRange`].
-    RangeRead {
-        /// Servo index.
-        idx: u8,
-    },
-    /// 7 OFFSET_WRITE (saved on the servo).
-    OffsetWrite {
-        /// Servo index.
-        idx: u8,
-        /// Offset in centidegrees.
-        offset_cdeg: i16,
-    },
-    /// 8 OFFSET_READ: answered by [`ModuleReport::HiwonderOffset`].
-    OffsetRead {
-        /// Servo index.
-        idx: u8,
-    },
-    /// 9 VOLTAGE_LIMIT_WRITE (the firmware clamps to 4500..=14000 mV).
-    VoltageLimitWrite {
-        /// Servo index.
-        idx: u8,
-        /// Lower limit in mV.
-        min_mv: u16,
-        /// Upper limit in mV.
-        max_mv: u16,
-    },
-    /// 10 MOTOR_MODE_WRITE (speed 0 = servo mode).
-    MotorModeWrite {
-        /// Servo index.
-        idx: u8,
-        /// Speed.
-        speed: i16,
-    },
-    /// 11 ADD_SERVO: answered by [`ModuleReport::HiwonderAdded`].
-    AddServo {
-        /// Bus id of the servo.
-        bus_id: u8,
-    },
-}
+super::table::hiwonder_table!(module_data_codec);
 
 const MAX_CENTIDEG: u16 = 24000;
 
@@ -386,9 +394,20 @@ impl ModuleCommand for HiwonderCommand {
     const MODULE_TYPE: ModuleType = ModuleType::HiwonderServo;
 
     fn to_data(&self) -> Result<Payload<COMMAND_PAYLOAD_MAX>, EncodeError> {
-        data_of::<Self>(|w| match self {
+        data_of::<Self>(|w| self.write_data(w))
+    }
+
+    fn parse(data: &[u8]) -> Result<Self, Error> {
+        Self::parse_data(data)
+    }
+}
+
+impl HiwonderCommand {
+    /// The data after the subtype byte of a `custom` row.
+    fn write_custom(&self, w: &mut Writer<'_>) {
+        match self {
             HiwonderCommand::SetAngle(moves) => {
-                w.bytes(&[1, moves.len() as u8]);
+                w.u8(moves.len() as u8);
                 for m in moves {
                     w.u8(m.idx);
                     w.u16(m.centideg);
@@ -396,48 +415,18 @@ impl ModuleCommand for HiwonderCommand {
                 }
             }
             HiwonderCommand::Enable { enabled, servos } => {
-                w.bytes(&[2, servos.len() as u8]);
+                w.u8(servos.len() as u8);
                 w.flag(*enabled);
                 w.bytes(servos);
             }
-            HiwonderCommand::IdWrite { new_id } => w.bytes(&[3, *new_id]),
-            HiwonderCommand::IdVerify { bus_id } => w.bytes(&[4, *bus_id]),
-            HiwonderCommand::RangeWrite {
-                idx,
-                min_cdeg,
-                max_cdeg,
-            } => {
-                w.bytes(&[5, *idx]);
-                w.u16(*min_cdeg);
-                w.u16(*max_cdeg);
-            }
-            HiwonderCommand::RangeRead { idx } => w.bytes(&[6, *idx]),
-            HiwonderCommand::OffsetWrite { idx, offset_cdeg } => {
-                w.bytes(&[7, *idx]);
-                w.i16(*offset_cdeg);
-            }
-            HiwonderCommand::OffsetRead { idx } => w.bytes(&[8, *idx]),
-            HiwonderCommand::VoltageLimitWrite {
-                idx,
-                min_mv,
-                max_mv,
-            } => {
-                w.bytes(&[9, *idx]);
-                w.u16(*min_mv);
-                w.u16(*max_mv);
-            }
-            HiwonderCommand::MotorModeWrite { idx, speed } => {
-                w.bytes(&[10, *idx]);
-                w.i16(*speed);
-            }
-            HiwonderCommand::AddServo { bus_id } => w.bytes(&[11, *bus_id]),
-        })
+            _ => {}
+        }
     }
 
-    fn parse(data: &[u8]) -> Result<Self, Error> {
-        let mut r = data_reader(data);
+    /// A `custom` row's data after its subtype byte.
+    fn parse_custom(subtype: u8, r: &mut Reader<'_>) -> Result<Self, Error> {
         let id = r.id();
-        let message = match r.u8()? {
+        Ok(match subtype {
             1 => {
                 let count = r.u8()?;
                 ensure((1..=5).contains(&count), id, "count")?;
@@ -453,51 +442,14 @@ impl ModuleCommand for HiwonderCommand {
                 }
                 HiwonderCommand::SetAngle(moves)
             }
-            2 => {
+            _ => {
                 let count = r.u8()?;
                 let enabled = r.flag("enabled")?;
                 let servos =
                     List::from_slice(r.take(usize::from(count))?).map_err(|_| r.bad_length())?;
                 HiwonderCommand::Enable { enabled, servos }
             }
-            3 => HiwonderCommand::IdWrite { new_id: r.u8()? },
-            4 => HiwonderCommand::IdVerify { bus_id: r.u8()? },
-            5 => {
-                let idx = r.u8()?;
-                let (min_cdeg, max_cdeg) = (r.u16()?, r.u16()?);
-                ensure(min_cdeg <= MAX_CENTIDEG, id, "min_cdeg")?;
-                ensure(max_cdeg <= MAX_CENTIDEG, id, "max_cdeg")?;
-                HiwonderCommand::RangeWrite {
-                    idx,
-                    min_cdeg,
-                    max_cdeg,
-                }
-            }
-            6 => HiwonderCommand::RangeRead { idx: r.u8()? },
-            7 => HiwonderCommand::OffsetWrite {
-                idx: r.u8()?,
-                offset_cdeg: r.i16()?,
-            },
-            8 => HiwonderCommand::OffsetRead { idx: r.u8()? },
-            9 => HiwonderCommand::VoltageLimitWrite {
-                idx: r.u8()?,
-                min_mv: r.u16()?,
-                max_mv: r.u16()?,
-            },
-            10 => HiwonderCommand::MotorModeWrite {
-                idx: r.u8()?,
-                speed: r.i16()?,
-            },
-            11 => HiwonderCommand::AddServo { bus_id: r.u8()? },
-            _ => {
-                return Err(Error::OutOfRange {
-                    id,
-                    field: "subtype",
-                })
-            }
-        };
-        r.end()?;
-        Ok(message)
+        })
     }
 }
 
@@ -552,72 +504,35 @@ impl ModuleCommand for Pca9685Command {
     }
 }
 
-/// SSD1306 data (module type 3), spec §7.3.
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Ssd1306Command {
-    /// 0 TEXT: at most 26 characters, appended to the text buffer.
-    Text(List<u8, 26>),
-    /// 1 TEXT_DONE: render the text buffer, then clear it.
-    TextDone,
-    /// 2 BINARY: 16 framebuffer bytes at `chunk * 16`.
-    Binary {
-        /// Chunk 0..=63.
-        chunk: u8,
-        /// The bytes.
-        data: [u8; 16],
-    },
-    /// 3 BINARY_DONE.
-    BinaryDone,
-}
+super::table::ssd1306_table!(module_data_codec);
 
 impl ModuleCommand for Ssd1306Command {
     const MODULE_TYPE: ModuleType = ModuleType::Ssd1306;
 
     fn to_data(&self) -> Result<Payload<COMMAND_PAYLOAD_MAX>, EncodeError> {
-        data_of::<Self>(|w| match self {
-            Ssd1306Command::Text(text) => {
-                w.bytes(&[0, text.len() as u8]);
-                w.bytes(text);
-            }
-            Ssd1306Command::TextDone => w.u8(1),
-            Ssd1306Command::Binary { chunk, data } => {
-                w.bytes(&[2, *chunk]);
-                w.bytes(data);
-            }
-            Ssd1306Command::BinaryDone => w.u8(3),
-        })
+        data_of::<Self>(|w| self.write_data(w))
     }
 
     fn parse(data: &[u8]) -> Result<Self, Error> {
-        let mut r = data_reader(data);
-        let id = r.id();
-        let message = match r.u8()? {
-            0 => {
-                let n = r.u8()?;
-                ensure(n <= 26, id, "len")?;
-                let text = List::from_slice(r.take(usize::from(n))?).map_err(|_| r.bad_length())?;
-                Ssd1306Command::Text(text)
-            }
-            1 => Ssd1306Command::TextDone,
-            2 => {
-                let chunk = r.u8()?;
-                ensure(chunk <= 63, id, "chunk")?;
-                Ssd1306Command::Binary {
-                    chunk,
-                    data: r.array()?,
-                }
-            }
-            3 => Ssd1306Command::BinaryDone,
-            _ => {
-                return Err(Error::OutOfRange {
-                    id,
-                    field: "subtype",
-                })
-            }
-        };
-        r.end()?;
-        Ok(message)
+        Self::parse_data(data)
+    }
+}
+
+impl Ssd1306Command {
+    /// The data after the subtype byte of a `custom` row (TEXT).
+    fn write_custom(&self, w: &mut Writer<'_>) {
+        if let Ssd1306Command::Text(text) = self {
+            w.u8(text.len() as u8);
+            w.bytes(text);
+        }
+    }
+
+    /// A `custom` row's data after its subtype byte (TEXT).
+    fn parse_custom(_subtype: u8, r: &mut Reader<'_>) -> Result<Self, Error> {
+        let n = r.u8()?;
+        ensure(n <= 26, r.id(), "len")?;
+        let text = List::from_slice(r.take(usize::from(n))?).map_err(|_| r.bad_length())?;
+        Ok(Ssd1306Command::Text(text))
     }
 }
 

@@ -651,7 +651,7 @@ macro_rules! command_reader {
             buf: &'b mut Vec<u8>,
         ) -> Result<Command<'b>, String> {
             Ok(match kind {
-                $($name => read_row!(f, buf, Command, $codec $($p)? { $($body)* }),)*
+                $($name => read_row!(f, buf, Command (return Err("custom rows are read by hand".into())), $codec $($p)? { $($body)* }),)*
                 other => return Err(format!("unknown type `{other}`")),
             })
         }
@@ -668,17 +668,16 @@ macro_rules! row_is_plain {
     };
 }
 
-/// Read a row's members as an `$enum` (a `custom` row's are read by
-/// [`read_command`] and [`read_report`]; a report row names its `plain`
-/// variant in brackets).
+/// Read a row's members as an `$enum`, or for a `custom` row evaluate
+/// `$custom` (a report row names its `plain` variant in brackets).
 macro_rules! read_row {
-    ($fields:ident, $buf:ident, $enum:ident, $([$($vs:ident)+])? custom $($rest:tt)*) => {
-        return Err(String::from("a custom row is read by hand"))
+    ($fields:ident, $buf:ident, $enum:ident ($custom:expr), $([$($vs:ident)+])? custom $($rest:tt)*) => {
+        $custom
     };
-    ($fields:ident, $buf:ident, $enum:ident, [$p:ident] plain $body:tt) => {
-        read_row!($fields, $buf, $enum, plain $p $body)
+    ($fields:ident, $buf:ident, $enum:ident ($custom:expr), [$p:ident] plain $body:tt) => {
+        read_row!($fields, $buf, $enum ($custom), plain $p $body)
     };
-    ($fields:ident, $buf:ident, $enum:ident,
+    ($fields:ident, $buf:ident, $enum:ident ($custom:expr),
         plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
         $enum::$p { $($f: read_member!($fields, $buf, $key, $kind $(($($arg)*))?),)* }
     };
@@ -720,6 +719,12 @@ macro_rules! read_member {
     ($fields:ident, $buf:ident, $key:literal, u16) => {
         u16_($fields, $key)?
     };
+    ($fields:ident, $buf:ident, $key:literal, u16_max($max:literal)) => {
+        $fields.int($key, 0, $max)? as u16
+    };
+    ($fields:ident, $buf:ident, $key:literal, i16) => {
+        i16_($fields, $key)?
+    };
     ($fields:ident, $buf:ident, $key:literal, pin) => {
         pin_($fields, $key)?
     };
@@ -759,7 +764,7 @@ macro_rules! report_reader {
             buf: &'b mut Vec<u8>,
         ) -> Result<Report<'b>, String> {
             Ok(match kind {
-                $($($name)|+ => read_row!(f, buf, Report, [$($($v)+)+] $codec { $($body)* }),)*
+                $($($name)|+ => read_row!(f, buf, Report (return Err("custom rows are read by hand".into())), [$($($v)+)+] $codec { $($body)* }),)*
                 other => return Err(format!("unknown type `{other}`")),
             })
         }
@@ -1007,7 +1012,7 @@ fn module_data(
     f: &mut Fields<'_>,
 ) -> Result<List<u8, COMMAND_PAYLOAD_MAX>, String> {
     let data = match module_type {
-        ModuleType::HiwonderServo => hiwonder_command(f)?.to_data(),
+        ModuleType::HiwonderServo => HiwonderCommand::read_members(f)?.to_data(),
         ModuleType::Pca9685 => {
             let channels = objects(f, "channels", |c| {
                 Ok(Pca9685Channel {
@@ -1020,7 +1025,7 @@ fn module_data(
                 .map_err(|_| format!("`channels` holds {}, at most 5", channels.len()))?;
             Pca9685Command { channels }.to_data()
         }
-        ModuleType::Ssd1306 => ssd1306_command(f)?.to_data(),
+        ModuleType::Ssd1306 => Ssd1306Command::read_members(f)?.to_data(),
         ModuleType::ShutdownRelay => match name(f, "subtype", &["start", "cancel"])? {
             0 => RelayCommand::Start,
             _ => RelayCommand::Cancel,
@@ -1030,108 +1035,81 @@ fn module_data(
     data.map_err(|e| e.to_string())
 }
 
-const HIWONDER_SUBTYPES: [&str; 11] = [
-    "set_angle",
-    "enable",
-    "id_write",
-    "id_verify",
-    "range_write",
-    "range_read",
-    "offset_write",
-    "offset_read",
-    "voltage_limit_write",
-    "motor_mode_write",
-    "add_servo",
-];
-
-fn hiwonder_command(f: &mut Fields<'_>) -> Result<HiwonderCommand, String> {
-    Ok(match name(f, "subtype", &HIWONDER_SUBTYPES)? {
-        0 => {
-            let moves = objects(f, "moves", |m| {
-                Ok(ServoMove {
-                    idx: u8_(m, "idx")?,
-                    centideg: u16_(m, "centideg")?,
-                    time_ms: u16_(m, "time_ms")?,
+/// A module data table's serde reader: `subtype` names the row, whose
+/// members are read by their kind (a `custom` row's by `read_custom`).
+macro_rules! module_data_reader {
+    ($(#[$em:meta])* $enum:ident; $($(#[$vm:meta])* $n:literal $name:literal [$($v:ident),+]
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
+        impl $enum {
+            /// The data's members (`subtype` and the row's fields).
+            fn read_members(f: &mut Fields<'_>) -> Result<Self, String> {
+                const SUBTYPES: &[&str] = &[$($name),*];
+                let subtype = SUBTYPES
+                    .get(name(f, "subtype", SUBTYPES)?)
+                    .copied()
+                    .unwrap_or_default();
+                let _buf: &mut Vec<u8> = &mut Vec::new();
+                Ok(match subtype {
+                    $($name => read_row!(f, _buf, $enum ($enum::read_custom(subtype, f)?), $codec $($p)? { $($body)* }),)*
+                    other => return Err(format!("unknown subtype `{other}`")),
                 })
-            })?;
-            HiwonderCommand::SetAngle(
-                List::from_slice(&moves)
-                    .map_err(|_| format!("`moves` holds {}, at most 5", moves.len()))?,
-            )
-        }
-        1 => {
-            let enabled = flag(f, "enabled")?;
-            let servos = bytes(f, "servos")?;
-            HiwonderCommand::Enable {
-                enabled,
-                servos: List::from_slice(&servos)
-                    .map_err(|_| format!("`servos` holds {}, at most 25", servos.len()))?,
             }
         }
-        2 => HiwonderCommand::IdWrite {
-            new_id: u8_(f, "new_id")?,
-        },
-        3 => HiwonderCommand::IdVerify {
-            bus_id: u8_(f, "bus_id")?,
-        },
-        4 => HiwonderCommand::RangeWrite {
-            idx: u8_(f, "idx")?,
-            min_cdeg: u16_(f, "min_cdeg")?,
-            max_cdeg: u16_(f, "max_cdeg")?,
-        },
-        5 => HiwonderCommand::RangeRead {
-            idx: u8_(f, "idx")?,
-        },
-        6 => HiwonderCommand::OffsetWrite {
-            idx: u8_(f, "idx")?,
-            offset_cdeg: i16_(f, "offset_cdeg")?,
-        },
-        7 => HiwonderCommand::OffsetRead {
-            idx: u8_(f, "idx")?,
-        },
-        8 => HiwonderCommand::VoltageLimitWrite {
-            idx: u8_(f, "idx")?,
-            min_mv: u16_(f, "min_mv")?,
-            max_mv: u16_(f, "max_mv")?,
-        },
-        9 => HiwonderCommand::MotorModeWrite {
-            idx: u8_(f, "idx")?,
-            speed: i16_(f, "speed")?,
-        },
-        _ => HiwonderCommand::AddServo {
-            bus_id: u8_(f, "bus_id")?,
-        },
-    })
+    };
 }
 
-fn ssd1306_command(f: &mut Fields<'_>) -> Result<Ssd1306Command, String> {
-    let subtypes = ["text", "text_done", "binary", "binary_done"];
-    Ok(match name(f, "subtype", &subtypes)? {
-        0 => {
-            let value = f.value("text")?;
-            let text = value
-                .as_str()
-                .ok_or_else(|| format!("field `text` must be a string, found {value}"))?;
-            // One character per byte (ISO 8859-1), as it is written.
-            let bytes = text
-                .chars()
-                .map(u8::try_from)
-                .collect::<Result<Vec<u8>, _>>()
-                .map_err(|_| {
-                    format!("field `text` must hold characters U+0000..=U+00FF only, found {value}")
+super::table::hiwonder_table!(module_data_reader);
+super::table::ssd1306_table!(module_data_reader);
+
+impl HiwonderCommand {
+    /// The members of a `custom` row.
+    fn read_custom(subtype: &str, f: &mut Fields<'_>) -> Result<Self, String> {
+        Ok(match subtype {
+            "set_angle" => {
+                let moves = objects(f, "moves", |m| {
+                    Ok(ServoMove {
+                        idx: u8_(m, "idx")?,
+                        centideg: u16_(m, "centideg")?,
+                        time_ms: u16_(m, "time_ms")?,
+                    })
                 })?;
-            Ssd1306Command::Text(
-                List::from_slice(&bytes)
-                    .map_err(|_| format!("field `text` holds {} bytes, at most 26", bytes.len()))?,
-            )
-        }
-        1 => Ssd1306Command::TextDone,
-        2 => Ssd1306Command::Binary {
-            chunk: u8_(f, "chunk")?,
-            data: f.array("data", byte)?,
-        },
-        _ => Ssd1306Command::BinaryDone,
-    })
+                HiwonderCommand::SetAngle(
+                    List::from_slice(&moves)
+                        .map_err(|_| format!("`moves` holds {}, at most 5", moves.len()))?,
+                )
+            }
+            _ => {
+                let enabled = flag(f, "enabled")?;
+                let servos = bytes(f, "servos")?;
+                HiwonderCommand::Enable {
+                    enabled,
+                    servos: List::from_slice(&servos)
+                        .map_err(|_| format!("`servos` holds {}, at most 25", servos.len()))?,
+                }
+            }
+        })
+    }
+}
+
+impl Ssd1306Command {
+    /// The members of a `custom` row (TEXT).
+    fn read_custom(_subtype: &str, f: &mut Fields<'_>) -> Result<Self, String> {
+        let value = f.value("text")?;
+        let text = value
+            .as_str()
+            .ok_or_else(|| format!("field `text` must be a string, found {value}"))?;
+        // One character per byte (ISO 8859-1), as it is written.
+        let bytes = text
+            .chars()
+            .map(u8::try_from)
+            .collect::<Result<Vec<u8>, _>>()
+            .map_err(|_| {
+                format!("field `text` must hold characters U+0000..=U+00FF only, found {value}")
+            })?;
+        Ok(Ssd1306Command::Text(List::from_slice(&bytes).map_err(
+            |_| format!("field `text` holds {} bytes, at most 26", bytes.len()),
+        )?))
+    }
 }
 
 /// A mirte 1.3 sonar distance: centimetres, or a sentinel's name.

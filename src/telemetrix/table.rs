@@ -22,10 +22,13 @@
 //! | `rgb`           | `Rgb`  | three bytes                    | `r`, `g`, `b`   |
 //! | `counted(name)` | `&[u8]`| a count byte (`name` in errors), then the bytes | array |
 //! | `trailing_flag` | `Option<bool>` | a last `0`/`1` byte, or nothing | `true`/`false`, or absent |
-//!
 //! | `nonzero_u32`   | `u32`  | four bytes, big-endian, not 0  | number          |
 //! | `counted_pins(name, each)` | `&[u8]` | as `counted`, each byte a GPIO `< 30` (`each` in errors) | array |
 //! | `trailing_u16_pair(a, b)` | `Option<(u16, u16)>` | two last `u16`s, or nothing | `a` and `b`, or absent |
+//! | `array(n)`      | `[u8; n]` | `n` bytes                   | array           |
+//! | `rest`          | `&[u8]`| every byte left                | array           |
+//! | `i16`           | `i16`  | two bytes, big-endian          | number          |
+//! | `u16_max(max)`  | `u16`  | two bytes, big-endian, `<= max` | number         |
 //!
 //! A row has at most one `counted` field (the serde reader borrows one buffer
 //! for it), and a `trailing_flag` only last.
@@ -43,6 +46,11 @@
 //! read by the compiler itself, so a typo is a compile error at the row.
 //! The wire layouts stay checked against the protocol spec by the tests
 //! (golden vectors in `tests/telemetrix.rs`), not by the table.
+//!
+//! The module data tables (`hiwonder_table`, `ssd1306_table`) describe the
+//! MODULE_DATA messages of a module type that starts with a subtype byte
+//! the same way, one row per subtype: the enum, its encode and parse
+//! (`ModuleCommand`), its JSON fields and its serde reader come from them.
 
 /// Hand the command rows to `$callback!`, after `$extra` (in brackets) when
 /// given: a consumer that expands in expression position takes its
@@ -626,3 +634,119 @@ macro_rules! report_table {
 }
 
 pub(crate) use report_table;
+
+/// Hand the rows of a module's data table to `$callback!`: the MODULE_DATA
+/// messages of one module type whose first data byte is a subtype (spec
+/// §7). The enum's docs and name come first, then one row per subtype: its
+/// byte, its `subtype` name in the JSON-lines schema, its variants in
+/// brackets, and its payload as a command row's (`plain` fields of the same
+/// kinds, or `custom` variants with hand-written arms).
+macro_rules! hiwonder_table {
+    ($callback:ident) => {
+        $callback! {
+            /// Hiwonder servo data (module type 1), spec §7.1. Servos are addressed by
+            /// their index in the init list. The firmware drops all of it unless the last
+            /// PING is less than 2 s old.
+            HiwonderCommand;
+            1 "set_angle" [SetAngle] custom {
+                /// 1 SET_ANGLE: 1..=5 moves.
+                SetAngle(List<ServoMove, 5>),
+            };
+            2 "enable" [Enable] custom {
+                /// 2 ENABLE: an empty list means all servos.
+                Enable {
+                    /// Torque on or off.
+                    enabled: bool,
+                    /// Servo indices (at most 25), or none for all.
+                    servos: List<u8, 25>,
+                },
+            };
+            /// 3 ID_WRITE: sets the id of whatever servo is on the bus.
+            3 "id_write" [IdWrite] plain IdWrite {
+                /// The new bus id.
+                new_id: u8 "new_id",
+            };
+            /// 4 ID_VERIFY: answered by [`ModuleReport::HiwonderIdVerify`].
+            4 "id_verify" [IdVerify] plain IdVerify {
+                /// Bus id to look for.
+                bus_id: u8 "bus_id",
+            };
+            /// 5 RANGE_WRITE.
+            5 "range_write" [RangeWrite] plain RangeWrite {
+                /// Servo index.
+                idx: u8 "idx",
+                /// Lower limit in centidegrees, 0..=24000.
+                min_cdeg: u16_max(24000) "min_cdeg",
+                /// Upper limit in centidegrees, 0..=24000.
+                max_cdeg: u16_max(24000) "max_cdeg",
+            };
+            /// 6 RANGE_READ: answered by [`ModuleReport::HiwonderRange`].
+            6 "range_read" [RangeRead] plain RangeRead {
+                /// Servo index.
+                idx: u8 "idx",
+            };
+            /// 7 OFFSET_WRITE (saved on the servo).
+            7 "offset_write" [OffsetWrite] plain OffsetWrite {
+                /// Servo index.
+                idx: u8 "idx",
+                /// Offset in centidegrees.
+                offset_cdeg: i16 "offset_cdeg",
+            };
+            /// 8 OFFSET_READ: answered by [`ModuleReport::HiwonderOffset`].
+            8 "offset_read" [OffsetRead] plain OffsetRead {
+                /// Servo index.
+                idx: u8 "idx",
+            };
+            /// 9 VOLTAGE_LIMIT_WRITE (the firmware clamps to 4500..=14000 mV).
+            9 "voltage_limit_write" [VoltageLimitWrite] plain VoltageLimitWrite {
+                /// Servo index.
+                idx: u8 "idx",
+                /// Lower limit in mV.
+                min_mv: u16 "min_mv",
+                /// Upper limit in mV.
+                max_mv: u16 "max_mv",
+            };
+            /// 10 MOTOR_MODE_WRITE (speed 0 = servo mode).
+            10 "motor_mode_write" [MotorModeWrite] plain MotorModeWrite {
+                /// Servo index.
+                idx: u8 "idx",
+                /// Speed.
+                speed: i16 "speed",
+            };
+            /// 11 ADD_SERVO: answered by [`ModuleReport::HiwonderAdded`].
+            11 "add_servo" [AddServo] plain AddServo {
+                /// Bus id of the servo.
+                bus_id: u8 "bus_id",
+            };
+        }
+    };
+}
+
+pub(crate) use hiwonder_table;
+
+/// The SSD1306's data table (see [`hiwonder_table`]).
+macro_rules! ssd1306_table {
+    ($callback:ident) => {
+        $callback! {
+            /// SSD1306 data (module type 3), spec §7.3.
+            Ssd1306Command;
+            0 "text" [Text] custom {
+                /// 0 TEXT: at most 26 characters, appended to the text buffer.
+                Text(List<u8, 26>),
+            };
+            /// 1 TEXT_DONE: render the text buffer, then clear it.
+            1 "text_done" [TextDone] plain TextDone {};
+            /// 2 BINARY: 16 framebuffer bytes at `chunk * 16`.
+            2 "binary" [Binary] plain Binary {
+                /// Chunk 0..=63.
+                chunk: range(0, 63) "chunk",
+                /// The bytes.
+                data: array(16) "data",
+            };
+            /// 3 BINARY_DONE.
+            3 "binary_done" [BinaryDone] plain BinaryDone {};
+        }
+    };
+}
+
+pub(crate) use ssd1306_table;
