@@ -133,6 +133,7 @@ mod request;
 mod response;
 #[cfg(feature = "serde")]
 mod serde_impls;
+mod table;
 mod wire;
 
 pub use blocks::{Block, BlockIter, Blocks, BlocksBuf, MAX_BLOCKS};

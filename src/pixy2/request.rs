@@ -14,6 +14,7 @@ use core::str::FromStr;
 use crate::encode::EncodeError;
 
 use super::error::Error;
+use super::table::kind_shown;
 use super::wire::{packet_type as ty, Body, Form, DEVICE_MAX_PAYLOAD};
 
 /// A program name as sent by changeProg: the raw payload, at most 64 bytes.
@@ -363,119 +364,288 @@ impl GetRgb {
     }
 }
 
-/// Any host → device request.
-///
-/// One whole frame parses with `Request::try_from(frame)` (either form, the
-/// sync word included, held to the device's 64-byte limit); a request
-/// encodes in the no-checksum form, as the official host sends it (wrap it in
-/// an [`Envelope`](super::Envelope) to choose).
-///
-/// Its [`Display`](fmt::Display) form is one line of the JSON words:
-/// `get_blocks sigmap=255 max_blocks=255`. With the `serde` feature it is the
-/// JSON object `robowire` prints and reads, a `type` from
-/// [`Request::NAMES`] and the request's fields:
-/// `{"type":"get_blocks","sigmap":255,"max_blocks":255}`. Deserializing checks
-/// what the encoder checks, with messages that name the field, and ignores
-/// `offset`, `len` and `checksum` (an [`Envelope`](super::Envelope) reads
-/// `checksum`).
-///
-/// ```
-/// use robowire::pixy2::{GetBlocks, Request};
-///
-/// let frame = [0xae, 0xc1, 0x20, 0x02, 0xff, 0x03];
-/// let request = Request::try_from(&frame[..])?;
-/// assert_eq!(request, Request::from(GetBlocks { sigmap: 0xff, max_blocks: 3 }));
-/// assert_eq!(request.to_string(), "get_blocks sigmap=255 max_blocks=3");
-/// # Ok::<(), robowire::pixy2::Error>(())
-/// ```
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Request {
-    /// 0x02 changeProg.
-    ChangeProg(ChangeProg),
-    /// 0x0c getResolution.
-    GetResolution(GetResolution),
-    /// 0x0e getVersion.
-    GetVersion(GetVersion),
-    /// 0x10 setCameraBrightness.
-    SetCameraBrightness(SetCameraBrightness),
-    /// 0x12 setServos.
-    SetServos(SetServos),
-    /// 0x14 setLED.
-    SetLed(SetLed),
-    /// 0x16 setLamp.
-    SetLamp(SetLamp),
-    /// 0x18 getFPS.
-    GetFps(GetFps),
-    /// 0x20 getBlocks.
-    GetBlocks(GetBlocks),
-    /// 0x30 getFeatures.
-    GetFeatures(GetFeatures),
-    /// 0x36 setMode.
-    SetMode(SetMode),
-    /// 0x38 setVector.
-    SetVector(SetVector),
-    /// 0x3a setNextTurn.
-    SetNextTurn(SetNextTurn),
-    /// 0x3c setDefaultTurn.
-    SetDefaultTurn(SetDefaultTurn),
-    /// 0x3e reverseVector.
-    ReverseVector(ReverseVector),
-    /// 0x70 getRGB.
-    GetRgb(GetRgb),
-}
+/// The request enum and its codec, from the request table (see
+/// [`table`](super::table)).
+macro_rules! request_codec {
+    ($($(#[$m:meta])* $ty:ident $name:literal $s:ident -> $resp:ident $payload:tt;)*) => {
+        /// Any host → device request.
+        ///
+        /// One whole frame parses with `Request::try_from(frame)` (either form, the
+        /// sync word included, held to the device's 64-byte limit); a request
+        /// encodes in the no-checksum form, as the official host sends it (wrap it in
+        /// an [`Envelope`](super::Envelope) to choose).
+        ///
+        /// Its [`Display`](fmt::Display) form is one line of the JSON words:
+        /// `get_blocks sigmap=255 max_blocks=255`. With the `serde` feature it is the
+        /// JSON object `robowire` prints and reads, a `type` from
+        /// [`Request::NAMES`] and the request's fields:
+        /// `{"type":"get_blocks","sigmap":255,"max_blocks":255}`. Deserializing checks
+        /// what the encoder checks, with messages that name the field, and ignores
+        /// `offset`, `len` and `checksum` (an [`Envelope`](super::Envelope) reads
+        /// `checksum`).
+        ///
+        /// ```
+        /// use robowire::pixy2::{GetBlocks, Request};
+        ///
+        /// let frame = [0xae, 0xc1, 0x20, 0x02, 0xff, 0x03];
+        /// let request = Request::try_from(&frame[..])?;
+        /// assert_eq!(request, Request::from(GetBlocks { sigmap: 0xff, max_blocks: 3 }));
+        /// assert_eq!(request.to_string(), "get_blocks sigmap=255 max_blocks=3");
+        /// # Ok::<(), robowire::pixy2::Error>(())
+        /// ```
+        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum Request {
+            $($(#[$m])* $s($s),)*
+        }
 
-macro_rules! from_request_types {
-    ($($name:ident),*) => {$(
-        impl From<$name> for Request {
-            fn from(r: $name) -> Self {
-                Self::$name(r)
+        $(impl From<$s> for Request {
+            fn from(r: $s) -> Self {
+                Self::$s(r)
+            }
+        })*
+
+        /// The payload length a request type must have: `Some(None)` = any
+        /// length up to the device limit, `None` = not a request type.
+        pub(crate) const fn request_len(packet_type: u8) -> Option<Option<u8>> {
+            match packet_type {
+                $(ty::$ty => Some(payload_size!($payload)),)*
+                _ => None,
             }
         }
-    )*};
+
+        impl Request {
+            /// Every request's `type` name, in packet type order.
+            pub const NAMES: [&'static str; 16] = [$($name),*];
+
+            /// The `type` name (one of [`Request::NAMES`]).
+            pub const fn name(&self) -> &'static str {
+                match self {
+                    $(Self::$s(_) => $name,)*
+                }
+            }
+
+            /// The packet type byte.
+            pub const fn packet_type(&self) -> u8 {
+                match self {
+                    $(Self::$s(_) => ty::$ty,)*
+                }
+            }
+
+            /// The type of the successful answer: 0x0d, 0x0f, 0x21 or 0x31 for the
+            /// four typed responses, RESULT (0x01) for everything else. ERROR (0x03)
+            /// can answer any request.
+            pub const fn response_type(&self) -> u8 {
+                match self {
+                    $(Self::$s(_) => ty::$resp,)*
+                }
+            }
+
+            /// The payload length.
+            pub fn payload_len(&self) -> usize {
+                match self {
+                    $(Self::$s(_r) => payload_len!(_r, $payload),)*
+                }
+            }
+
+            /// Parse a request from its type and payload, as the device reads it.
+            ///
+            /// Errors: an unknown type, a length the type cannot have, a payload over
+            /// the device's 64-byte limit.
+            pub(crate) fn from_payload(packet_type: u8, payload: &[u8]) -> Result<Self, Error> {
+                let len = u8::try_from(payload.len()).map_err(|_| Error::TooLong {
+                    packet_type,
+                    len: u8::MAX,
+                    max: DEVICE_MAX_PAYLOAD as u8,
+                })?;
+                check_request_header(packet_type, len)?;
+                let p = payload;
+                Ok(match packet_type {
+                    $(ty::$ty => Self::$s(parse_payload!(p, $s, packet_type, len, $payload)),)*
+                    _ => return Err(Error::UnknownType { packet_type }),
+                })
+            }
+        }
+
+        /// The `type` name and every field the JSON form carries, as `key=value`:
+        /// `set_servos pan=500 tilt=20`, `change_prog name=line`.
+        impl fmt::Display for Request {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str(self.name())?;
+                match self {
+                    $(Self::$s(_r) => display_payload!(f, _r, $payload),)*
+                }
+            }
+        }
+
+        impl Body for Request {
+            fn packet_type(&self) -> u8 {
+                Request::packet_type(self)
+            }
+
+            fn payload_len(&self) -> usize {
+                Request::payload_len(self)
+            }
+
+            // `out` is exactly `payload_len` long (`Body`'s contract), and
+            // each row's writes and length come from the same fields.
+            fn write_payload(&self, out: &mut [u8]) -> Result<(), EncodeError> {
+                let mut _w = Fields::new(out);
+                match self {
+                    $(Self::$s(_r) => write_payload!(_w, _r, $payload),)*
+                }
+                Ok(())
+            }
+
+            fn default_form(&self) -> Form {
+                Form::NoChecksum
+            }
+        }
+    };
 }
 
-from_request_types!(
-    ChangeProg,
-    GetResolution,
-    GetVersion,
-    SetCameraBrightness,
-    SetServos,
-    SetLed,
-    SetLamp,
-    GetFps,
-    GetBlocks,
-    GetFeatures,
-    SetMode,
-    SetVector,
-    SetNextTurn,
-    SetDefaultTurn,
-    ReverseVector,
-    GetRgb
-);
+/// A row's payload length: the sum of its fields', or `None` (any) for a
+/// `custom` row.
+macro_rules! payload_size {
+    (custom) => {
+        None
+    };
+    ({ $($f:tt : $kind:ident $key:literal),* $(,)? }) => {
+        Some(0 $(+ kind_size!($kind))*)
+    };
+}
 
-/// The payload length a request type must have: `Some(None)` = any length up
-/// to the device limit, `None` = not a request type.
-pub(crate) const fn request_len(packet_type: u8) -> Option<Option<u8>> {
-    Some(Some(match packet_type {
-        ty::CHANGE_PROG => return Some(None),
-        ty::GET_RESOLUTION => 1,
-        ty::GET_VERSION => 0,
-        ty::SET_CAMERA_BRIGHTNESS => 1,
-        ty::SET_SERVOS => 4,
-        ty::SET_LED => 3,
-        ty::SET_LAMP => 2,
-        ty::GET_FPS => 0,
-        ty::GET_BLOCKS => 2,
-        ty::GET_FEATURES => 2,
-        ty::SET_MODE => 1,
-        ty::SET_VECTOR => 1,
-        ty::SET_NEXT_TURN => 2,
-        ty::SET_DEFAULT_TURN => 2,
-        ty::REVERSE_VECTOR => 0,
-        ty::GET_RGB => 5,
-        _ => return None,
-    }))
+macro_rules! kind_size {
+    (u16) => {
+        2
+    };
+    (i16) => {
+        2
+    };
+    ($kind:ident) => {
+        1
+    };
+}
+
+macro_rules! payload_len {
+    ($r:ident, custom) => {
+        $r.payload_len()
+    };
+    ($r:ident, $fields:tt) => {
+        match payload_size!($fields) {
+            Some(n) => n as usize,
+            None => 0,
+        }
+    };
+}
+
+macro_rules! parse_payload {
+    ($p:ident, $s:ident, $ty:ident, $len:ident, custom) => {
+        $s::from_payload($ty, $len, $p)?
+    };
+    ($p:ident, $s:ident, $ty:ident, $len:ident, { $($fields:tt)* }) => {
+        parse_fields!($p, $s, (0), [], $($fields)*)
+    };
+}
+
+/// A row's struct read field by field at constant offsets (a muncher that
+/// sums the sizes of the fields before each).
+macro_rules! parse_fields {
+    ($p:ident, $s:ident, $at:expr, [$($done:tt)*], $f:tt : $kind:ident $key:literal $(, $($rest:tt)*)?) => {
+        parse_fields!($p, $s, ($at + kind_size!($kind)), [$($done)* $f: read_at!($p, $at, $kind),], $($($rest)*)?)
+    };
+    ($p:ident, $s:ident, $at:expr, [$($done:tt)*], ) => {
+        $s { $($done)* }
+    };
+}
+
+macro_rules! read_at {
+    ($p:ident, $at:expr, u16) => {
+        u16_at($p, $at)
+    };
+    ($p:ident, $at:expr, i16) => {
+        u16_at($p, $at) as i16
+    };
+    ($p:ident, $at:expr, $kind:ident) => {
+        u8_at($p, $at)
+    };
+}
+
+macro_rules! display_payload {
+    ($f:ident, $r:ident, custom) => {
+        $r.fmt_fields($f)
+    };
+    ($f:ident, $r:ident, { $($field:tt : $kind:ident $key:literal),* $(,)? }) => {{
+        $(if kind_shown!($kind, $r.$field) {
+            write!($f, concat!(" ", $key, "={}"), $r.$field)?;
+        })*
+        Ok(())
+    }};
+}
+
+macro_rules! write_payload {
+    ($w:ident, $r:ident, custom) => {
+        $r.write_payload(&mut $w)
+    };
+    ($w:ident, $r:ident, { $($f:tt : $kind:ident $key:literal),* $(,)? }) => {{
+        $(write_kind!($w, $r.$f, $kind);)*
+    }};
+}
+
+macro_rules! write_kind {
+    ($w:ident, $v:expr, u16) => {
+        $w.put(&$v.to_le_bytes())
+    };
+    ($w:ident, $v:expr, i16) => {
+        $w.put(&$v.to_le_bytes())
+    };
+    ($w:ident, $v:expr, sigmap) => {{
+        if $v == 0 {
+            return Err(EncodeError::OutOfRange {
+                field: "getBlocks sigmap (0 is refused by the device)",
+            });
+        }
+        $w.put(&[$v])
+    }};
+    ($w:ident, $v:expr, $kind:ident) => {
+        $w.put(&[$v])
+    };
+}
+
+super::table::request_table!(request_codec);
+
+/// A payload written field by field (a write past its end is dropped).
+struct Fields<'a> {
+    bytes: &'a mut [u8],
+    at: usize,
+}
+
+/// Two bytes at `i`, little-endian (0 past the end: the length is checked
+/// first).
+fn u16_at(p: &[u8], i: usize) -> u16 {
+    match p.get(i..i + 2) {
+        Some(&[a, b]) => u16::from_le_bytes([a, b]),
+        _ => 0,
+    }
+}
+
+/// The byte at `i` (0 past the end).
+fn u8_at(p: &[u8], i: usize) -> u8 {
+    p.get(i).copied().unwrap_or(0)
+}
+
+impl<'a> Fields<'a> {
+    fn new(bytes: &'a mut [u8]) -> Self {
+        Self { bytes, at: 0 }
+    }
+
+    fn put(&mut self, bytes: &[u8]) {
+        let end = self.at + bytes.len();
+        if let Some(slot) = self.bytes.get_mut(self.at..end) {
+            slot.copy_from_slice(bytes);
+        }
+        self.at = end;
+    }
 }
 
 /// Header check for a request: a known type with a length the device takes.
@@ -498,110 +668,7 @@ pub(crate) fn check_request_header(packet_type: u8, len: u8) -> Result<(), Error
     }
 }
 
-fn u16_at(p: &[u8], i: usize) -> u16 {
-    match p.get(i..i + 2) {
-        Some(&[a, b]) => u16::from_le_bytes([a, b]),
-        _ => 0,
-    }
-}
-
-fn u8_at(p: &[u8], i: usize) -> u8 {
-    p.get(i).copied().unwrap_or(0)
-}
-
 impl Request {
-    /// Every request's `type` name, in packet type order.
-    pub const NAMES: [&'static str; 16] = [
-        "change_prog",
-        "get_resolution",
-        "get_version",
-        "set_camera_brightness",
-        "set_servos",
-        "set_led",
-        "set_lamp",
-        "get_fps",
-        "get_blocks",
-        "get_features",
-        "set_mode",
-        "set_vector",
-        "set_next_turn",
-        "set_default_turn",
-        "reverse_vector",
-        "get_rgb",
-    ];
-
-    /// The `type` name (one of [`Request::NAMES`]).
-    pub const fn name(&self) -> &'static str {
-        Self::NAMES[match self {
-            Self::ChangeProg(_) => 0,
-            Self::GetResolution(_) => 1,
-            Self::GetVersion(_) => 2,
-            Self::SetCameraBrightness(_) => 3,
-            Self::SetServos(_) => 4,
-            Self::SetLed(_) => 5,
-            Self::SetLamp(_) => 6,
-            Self::GetFps(_) => 7,
-            Self::GetBlocks(_) => 8,
-            Self::GetFeatures(_) => 9,
-            Self::SetMode(_) => 10,
-            Self::SetVector(_) => 11,
-            Self::SetNextTurn(_) => 12,
-            Self::SetDefaultTurn(_) => 13,
-            Self::ReverseVector(_) => 14,
-            Self::GetRgb(_) => 15,
-        }]
-    }
-
-    /// The packet type byte.
-    pub const fn packet_type(&self) -> u8 {
-        match self {
-            Self::ChangeProg(_) => ty::CHANGE_PROG,
-            Self::GetResolution(_) => ty::GET_RESOLUTION,
-            Self::GetVersion(_) => ty::GET_VERSION,
-            Self::SetCameraBrightness(_) => ty::SET_CAMERA_BRIGHTNESS,
-            Self::SetServos(_) => ty::SET_SERVOS,
-            Self::SetLed(_) => ty::SET_LED,
-            Self::SetLamp(_) => ty::SET_LAMP,
-            Self::GetFps(_) => ty::GET_FPS,
-            Self::GetBlocks(_) => ty::GET_BLOCKS,
-            Self::GetFeatures(_) => ty::GET_FEATURES,
-            Self::SetMode(_) => ty::SET_MODE,
-            Self::SetVector(_) => ty::SET_VECTOR,
-            Self::SetNextTurn(_) => ty::SET_NEXT_TURN,
-            Self::SetDefaultTurn(_) => ty::SET_DEFAULT_TURN,
-            Self::ReverseVector(_) => ty::REVERSE_VECTOR,
-            Self::GetRgb(_) => ty::GET_RGB,
-        }
-    }
-
-    /// The type of the successful answer: 0x0d, 0x0f, 0x21 or 0x31 for the
-    /// four typed responses, RESULT (0x01) for everything else. ERROR (0x03)
-    /// can answer any request.
-    pub const fn response_type(&self) -> u8 {
-        match self {
-            Self::GetResolution(_) => ty::RESOLUTION,
-            Self::GetVersion(_) => ty::VERSION,
-            Self::GetBlocks(_) => ty::BLOCKS,
-            Self::GetFeatures(_) => ty::FEATURES,
-            _ => ty::RESULT,
-        }
-    }
-
-    /// The payload length.
-    pub fn payload_len(&self) -> usize {
-        match self {
-            Self::ChangeProg(c) => c.0.as_payload().len(),
-            Self::GetVersion(_) | Self::GetFps(_) | Self::ReverseVector(_) => 0,
-            Self::GetResolution(_) | Self::SetCameraBrightness(_) => 1,
-            Self::SetMode(_) | Self::SetVector(_) => 1,
-            Self::SetLamp(_) | Self::GetBlocks(_) | Self::GetFeatures(_) => 2,
-            Self::SetNextTurn(_) | Self::SetDefaultTurn(_) => 2,
-            Self::SetLed(_) => 3,
-            Self::SetServos(_) => 4,
-            Self::GetRgb(_) => 5,
-        }
-    }
-
     /// Parse a request from its type and payload, as the device reads it.
     #[deprecated(
         since = "0.2.0",
@@ -610,167 +677,33 @@ impl Request {
     pub fn parse(packet_type: u8, payload: &[u8]) -> Result<Self, Error> {
         Self::from_payload(packet_type, payload)
     }
-
-    /// Parse a request from its type and payload, as the device reads it.
-    ///
-    /// Errors: an unknown type, a length the type cannot have, a payload over
-    /// the device's 64-byte limit, getBlocks with signature map 0.
-    pub(crate) fn from_payload(packet_type: u8, payload: &[u8]) -> Result<Self, Error> {
-        let len = u8::try_from(payload.len()).map_err(|_| Error::TooLong {
-            packet_type,
-            len: u8::MAX,
-            max: DEVICE_MAX_PAYLOAD as u8,
-        })?;
-        check_request_header(packet_type, len)?;
-        let p = payload;
-        Ok(match packet_type {
-            ty::CHANGE_PROG => match ProgName::from_payload(p) {
-                Some(name) => Self::ChangeProg(ChangeProg(name)),
-                None => return Err(Error::BadLength { packet_type, len }),
-            },
-            ty::GET_RESOLUTION => Self::GetResolution(GetResolution {
-                reserved: u8_at(p, 0),
-            }),
-            ty::GET_VERSION => Self::GetVersion(GetVersion),
-            ty::SET_CAMERA_BRIGHTNESS => {
-                Self::SetCameraBrightness(SetCameraBrightness(u8_at(p, 0)))
-            }
-            ty::SET_SERVOS => Self::SetServos(SetServos {
-                pan: u16_at(p, 0),
-                tilt: u16_at(p, 2),
-            }),
-            ty::SET_LED => Self::SetLed(SetLed {
-                r: u8_at(p, 0),
-                g: u8_at(p, 1),
-                b: u8_at(p, 2),
-            }),
-            ty::SET_LAMP => Self::SetLamp(SetLamp {
-                upper: u8_at(p, 0),
-                lower: u8_at(p, 1),
-            }),
-            ty::GET_FPS => Self::GetFps(GetFps),
-            ty::GET_BLOCKS => {
-                // Sigmap 0 is what the official host library sends for it;
-                // the device answers ERROR -3. A request all the same.
-                Self::GetBlocks(GetBlocks {
-                    sigmap: u8_at(p, 0),
-                    max_blocks: u8_at(p, 1),
-                })
-            }
-            ty::GET_FEATURES => Self::GetFeatures(GetFeatures {
-                scope: u8_at(p, 0),
-                features: u8_at(p, 1),
-            }),
-            ty::SET_MODE => Self::SetMode(SetMode(u8_at(p, 0))),
-            ty::SET_VECTOR => Self::SetVector(SetVector(u8_at(p, 0))),
-            ty::SET_NEXT_TURN => Self::SetNextTurn(SetNextTurn(u16_at(p, 0) as i16)),
-            ty::SET_DEFAULT_TURN => Self::SetDefaultTurn(SetDefaultTurn(u16_at(p, 0) as i16)),
-            ty::REVERSE_VECTOR => Self::ReverseVector(ReverseVector),
-            ty::GET_RGB => Self::GetRgb(GetRgb {
-                x: u16_at(p, 0),
-                y: u16_at(p, 2),
-                saturate: u8_at(p, 4),
-            }),
-            _ => return Err(Error::UnknownType { packet_type }),
-        })
-    }
 }
 
-/// The `type` name and every field the JSON form carries, as `key=value`:
-/// `set_servos pan=500 tilt=20`, `change_prog name=line`.
-impl fmt::Display for Request {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())?;
-        match *self {
-            Self::ChangeProg(ChangeProg(ref name)) => {
-                let payload = name.as_payload();
-                let end = payload.iter().rposition(|&b| b != 0).map_or(0, |i| i + 1);
-                write!(f, " name={}", payload[..end].escape_ascii())?;
-                if payload.len() != ProgName::PADDED_LEN {
-                    write!(f, " payload_len={}", payload.len())?;
-                }
-                Ok(())
-            }
-            Self::GetResolution(GetResolution { reserved }) if reserved != 0 => {
-                write!(f, " reserved={reserved}")
-            }
-            Self::GetResolution(_) | Self::GetVersion(_) | Self::GetFps(_) => Ok(()),
-            Self::ReverseVector(_) => Ok(()),
-            Self::SetCameraBrightness(SetCameraBrightness(b)) => write!(f, " brightness={b}"),
-            Self::SetServos(SetServos { pan, tilt }) => write!(f, " pan={pan} tilt={tilt}"),
-            Self::SetLed(SetLed { r, g, b }) => write!(f, " r={r} g={g} b={b}"),
-            Self::SetLamp(SetLamp { upper, lower }) => write!(f, " upper={upper} lower={lower}"),
-            Self::GetBlocks(GetBlocks { sigmap, max_blocks }) => {
-                write!(f, " sigmap={sigmap} max_blocks={max_blocks}")
-            }
-            Self::GetFeatures(GetFeatures { scope, features }) => {
-                write!(f, " scope={scope} features={features}")
-            }
-            Self::SetMode(SetMode(mode)) => write!(f, " mode={mode}"),
-            Self::SetVector(SetVector(index)) => write!(f, " index={index}"),
-            Self::SetNextTurn(SetNextTurn(angle)) | Self::SetDefaultTurn(SetDefaultTurn(angle)) => {
-                write!(f, " angle={angle}")
-            }
-            Self::GetRgb(GetRgb { x, y, saturate }) => {
-                write!(f, " x={x} y={y} saturate={saturate}")
-            }
-        }
-    }
-}
-
-impl Body for Request {
-    fn packet_type(&self) -> u8 {
-        Request::packet_type(self)
-    }
-
+/// The `custom` row: a name of any length.
+impl ChangeProg {
     fn payload_len(&self) -> usize {
-        Request::payload_len(self)
+        self.0.as_payload().len()
     }
 
-    fn write_payload(&self, out: &mut [u8]) -> Result<(), EncodeError> {
-        let mut put = |bytes: &[u8]| {
-            out.get_mut(..bytes.len())
-                .map(|o| o.copy_from_slice(bytes))
-                .ok_or(EncodeError::BufferTooSmall {
-                    needed: bytes.len(),
-                    available: 0,
-                })
-        };
-        match *self {
-            Self::ChangeProg(ChangeProg(ref name)) => put(name.as_payload()),
-            Self::GetVersion(_) | Self::GetFps(_) | Self::ReverseVector(_) => Ok(()),
-            Self::GetResolution(GetResolution { reserved }) => put(&[reserved]),
-            Self::SetCameraBrightness(SetCameraBrightness(v)) => put(&[v]),
-            Self::SetServos(SetServos { pan, tilt }) => {
-                let [a, b] = pan.to_le_bytes();
-                let [c, d] = tilt.to_le_bytes();
-                put(&[a, b, c, d])
-            }
-            Self::SetLed(SetLed { r, g, b }) => put(&[r, g, b]),
-            Self::SetLamp(SetLamp { upper, lower }) => put(&[upper, lower]),
-            Self::GetBlocks(GetBlocks { sigmap, max_blocks }) => {
-                if sigmap == 0 {
-                    return Err(EncodeError::OutOfRange {
-                        field: "getBlocks sigmap (0 is refused by the device)",
-                    });
-                }
-                put(&[sigmap, max_blocks])
-            }
-            Self::GetFeatures(GetFeatures { scope, features }) => put(&[scope, features]),
-            Self::SetMode(SetMode(v)) | Self::SetVector(SetVector(v)) => put(&[v]),
-            Self::SetNextTurn(SetNextTurn(a)) | Self::SetDefaultTurn(SetDefaultTurn(a)) => {
-                put(&a.to_le_bytes())
-            }
-            Self::GetRgb(GetRgb { x, y, saturate }) => {
-                let [a, b] = x.to_le_bytes();
-                let [c, d] = y.to_le_bytes();
-                put(&[a, b, c, d, saturate])
-            }
+    fn from_payload(packet_type: u8, len: u8, payload: &[u8]) -> Result<Self, Error> {
+        match ProgName::from_payload(payload) {
+            Some(name) => Ok(ChangeProg(name)),
+            None => Err(Error::BadLength { packet_type, len }),
         }
     }
 
-    fn default_form(&self) -> Form {
-        Form::NoChecksum
+    fn fmt_fields(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let payload = self.0.as_payload();
+        let end = payload.iter().rposition(|&b| b != 0).map_or(0, |i| i + 1);
+        write!(f, " name={}", payload[..end].escape_ascii())?;
+        if payload.len() != ProgName::PADDED_LEN {
+            write!(f, " payload_len={}", payload.len())?;
+        }
+        Ok(())
+    }
+
+    fn write_payload(&self, w: &mut Fields<'_>) {
+        w.put(self.0.as_payload());
     }
 }
 

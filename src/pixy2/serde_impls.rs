@@ -37,6 +37,7 @@ use super::request::{
     SetNextTurn, SetServos, SetVector,
 };
 use super::response::{FirmwareType, Resolution, Response, ResponseBuf, Version};
+use super::table::kind_shown;
 use super::wire::{Form, DEVICE_MAX_PAYLOAD, MAX_FRAME_LEN, MAX_PAYLOAD};
 
 // ---------------------------------------------------------------- serialize
@@ -80,56 +81,7 @@ fn serialize_request<S: Serializer>(
     if let Some(checksum) = checksum {
         map.serialize_entry("checksum", &checksum)?;
     }
-    match *request {
-        Request::ChangeProg(ChangeProg(ref name)) => {
-            let payload = name.as_payload();
-            map.serialize_entry("name", &Text(payload))?;
-            if payload.len() != ProgName::PADDED_LEN {
-                map.serialize_entry("payload_len", &payload.len())?;
-            }
-        }
-        Request::GetResolution(GetResolution { reserved }) => {
-            if reserved != 0 {
-                map.serialize_entry("reserved", &reserved)?;
-            }
-        }
-        Request::GetVersion(_) | Request::GetFps(_) | Request::ReverseVector(_) => {}
-        Request::SetCameraBrightness(SetCameraBrightness(b)) => {
-            map.serialize_entry("brightness", &b)?;
-        }
-        Request::SetServos(SetServos { pan, tilt }) => {
-            map.serialize_entry("pan", &pan)?;
-            map.serialize_entry("tilt", &tilt)?;
-        }
-        Request::SetLed(SetLed { r, g, b }) => {
-            map.serialize_entry("r", &r)?;
-            map.serialize_entry("g", &g)?;
-            map.serialize_entry("b", &b)?;
-        }
-        Request::SetLamp(SetLamp { upper, lower }) => {
-            map.serialize_entry("upper", &upper)?;
-            map.serialize_entry("lower", &lower)?;
-        }
-        Request::GetBlocks(GetBlocks { sigmap, max_blocks }) => {
-            map.serialize_entry("sigmap", &sigmap)?;
-            map.serialize_entry("max_blocks", &max_blocks)?;
-        }
-        Request::GetFeatures(GetFeatures { scope, features }) => {
-            map.serialize_entry("scope", &scope)?;
-            map.serialize_entry("features", &features)?;
-        }
-        Request::SetMode(SetMode(mode)) => map.serialize_entry("mode", &mode)?,
-        Request::SetVector(SetVector(index)) => map.serialize_entry("index", &index)?,
-        Request::SetNextTurn(SetNextTurn(angle))
-        | Request::SetDefaultTurn(SetDefaultTurn(angle)) => {
-            map.serialize_entry("angle", &angle)?;
-        }
-        Request::GetRgb(GetRgb { x, y, saturate }) => {
-            map.serialize_entry("x", &x)?;
-            map.serialize_entry("y", &y)?;
-            map.serialize_entry("saturate", &saturate)?;
-        }
-    }
+    serialize_payload(request, &mut map)?;
     // What the device refuses is marked: the marker lets the line encode.
     if let Some(quirk) = request.quirk() {
         map.serialize_entry("quirk", quirk.name())?;
@@ -622,85 +574,117 @@ fn read_message(value: &Value) -> Result<(Option<Form>, MessageBuf), String> {
     Ok((form, message))
 }
 
-fn read_request(kind: &str, f: &mut Obj<'_>, quirk: Option<Quirk>) -> Result<Request, String> {
-    Ok(match kind {
-        "change_prog" => {
-            let max = DEVICE_MAX_PAYLOAD;
-            let len = if f.fields.has("payload_len") {
-                f.int("payload_len", 0, max as i64)? as usize
-            } else {
-                ProgName::PADDED_LEN
-            };
-            let name = f.text("name", max)?;
-            if name.len() > len {
-                return Err(format!(
-                    "field `name` is {} bytes long, more than the {len}-byte payload \
-                     (give payload_len, up to {max})",
-                    name.len()
-                ));
+/// A request's fields and its serde reader, from the request table (see
+/// `table.rs`).
+macro_rules! request_serde {
+    ($($(#[$m:meta])* $ty:ident $name:literal $s:ident -> $resp:ident $payload:tt;)*) => {
+        /// The request's fields after `type` (and `checksum`).
+        fn serialize_payload<M: SerializeMap>(request: &Request, map: &mut M) -> Result<(), M::Error> {
+            match request {
+                $(Request::$s(_r) => serialize_fields!(map, _r, $payload),)*
             }
-            let mut payload = name;
-            payload.resize(len, 0);
-            // At most 64 bytes, so this cannot fail.
-            let name = ProgName::from_payload(&payload)
-                .ok_or_else(|| format!("a payload of {len} bytes is longer than {max}"))?;
-            Request::ChangeProg(ChangeProg(name))
         }
-        "get_resolution" => Request::GetResolution(GetResolution {
-            reserved: f.u8_or_zero("reserved")?,
-        }),
-        "get_version" => Request::GetVersion(GetVersion),
-        "set_camera_brightness" => {
-            Request::SetCameraBrightness(SetCameraBrightness(f.u8("brightness")?))
-        }
-        "set_servos" => Request::SetServos(SetServos {
-            pan: f.u16("pan")?,
-            tilt: f.u16("tilt")?,
-        }),
-        "set_led" => Request::SetLed(SetLed {
-            r: f.u8("r")?,
-            g: f.u8("g")?,
-            b: f.u8("b")?,
-        }),
-        "set_lamp" => Request::SetLamp(SetLamp {
-            upper: f.u8("upper")?,
-            lower: f.u8("lower")?,
-        }),
-        "get_fps" => Request::GetFps(GetFps),
-        "get_blocks" => {
-            let sigmap = f.value("sigmap")?;
-            let sigmap = if quirk == Some(Quirk::SigmapZero) {
-                read_int(sigmap, 0, 255).map_err(|e| format!("field `sigmap` {e}"))?
-            } else {
-                read_int(sigmap, 1, 255).map_err(|e| {
-                    format!(
-                        "field `sigmap` {e} (the device refuses 0 with ERROR -3; decode marks \
-                         such a request \"quirk\":\"sigmap_zero\": add that to the line to \
-                         encode it anyway)"
-                    )
-                })?
-            } as u8;
-            Request::GetBlocks(GetBlocks {
-                sigmap,
-                max_blocks: f.u8("max_blocks")?,
+
+        /// The request of type `kind` from its members.
+        fn read_request(kind: &str, f: &mut Obj<'_>, quirk: Option<Quirk>) -> Result<Request, String> {
+            Ok(match kind {
+                $($name => Request::$s(read_fields!(f, quirk, $s, $payload)),)*
+                other => return Err(format!("unknown type `{other}`")),
             })
         }
-        "get_features" => Request::GetFeatures(GetFeatures {
-            scope: f.u8("scope")?,
-            features: f.u8("features")?,
-        }),
-        "set_mode" => Request::SetMode(SetMode(f.u8("mode")?)),
-        "set_vector" => Request::SetVector(SetVector(f.u8("index")?)),
-        "set_next_turn" => Request::SetNextTurn(SetNextTurn(f.i16("angle")?)),
-        "set_default_turn" => Request::SetDefaultTurn(SetDefaultTurn(f.i16("angle")?)),
-        "reverse_vector" => Request::ReverseVector(ReverseVector),
-        "get_rgb" => Request::GetRgb(GetRgb {
-            x: f.u16("x")?,
-            y: f.u16("y")?,
-            saturate: f.u8("saturate")?,
-        }),
-        other => return Err(format!("unknown type `{other}`")),
-    })
+    };
+}
+
+macro_rules! serialize_fields {
+    ($map:ident, $r:ident, custom) => {
+        $r.serialize_fields($map)
+    };
+    ($map:ident, $r:ident, { $($f:tt : $kind:ident $key:literal),* $(,)? }) => {{
+        $(if kind_shown!($kind, $r.$f) {
+            $map.serialize_entry($key, &$r.$f)?;
+        })*
+        Ok(())
+    }};
+}
+
+macro_rules! read_fields {
+    ($obj:ident, $quirk:ident, $s:ident, custom) => {
+        $s::read_fields($obj)?
+    };
+    ($obj:ident, $quirk:ident, $s:ident, { $($f:tt : $kind:ident $key:literal),* $(,)? }) => {
+        $s { $($f: read_member!($obj, $quirk, $kind, $key),)* }
+    };
+}
+
+macro_rules! read_member {
+    ($obj:ident, $quirk:ident, u8, $key:literal) => {
+        $obj.u8($key)?
+    };
+    ($obj:ident, $quirk:ident, u16, $key:literal) => {
+        $obj.u16($key)?
+    };
+    ($obj:ident, $quirk:ident, i16, $key:literal) => {
+        $obj.i16($key)?
+    };
+    ($obj:ident, $quirk:ident, reserved, $key:literal) => {
+        $obj.u8_or_zero($key)?
+    };
+    ($obj:ident, $quirk:ident, sigmap, $key:literal) => {
+        read_sigmap($obj, $quirk)?
+    };
+}
+
+super::table::request_table!(request_serde);
+
+/// getBlocks' signature map: 0 only with its quirk marker.
+fn read_sigmap(f: &mut Obj<'_>, quirk: Option<Quirk>) -> Result<u8, String> {
+    let sigmap = f.value("sigmap")?;
+    Ok(if quirk == Some(Quirk::SigmapZero) {
+        read_int(sigmap, 0, 255).map_err(|e| format!("field `sigmap` {e}"))?
+    } else {
+        read_int(sigmap, 1, 255).map_err(|e| {
+            format!(
+                "field `sigmap` {e} (the device refuses 0 with ERROR -3; decode marks \
+                 such a request \"quirk\":\"sigmap_zero\": add that to the line to \
+                 encode it anyway)"
+            )
+        })?
+    } as u8)
+}
+
+/// The `custom` row: a name of any length, padded to `payload_len`.
+impl ChangeProg {
+    fn serialize_fields<M: SerializeMap>(&self, map: &mut M) -> Result<(), M::Error> {
+        let payload = self.0.as_payload();
+        map.serialize_entry("name", &Text(payload))?;
+        if payload.len() != ProgName::PADDED_LEN {
+            map.serialize_entry("payload_len", &payload.len())?;
+        }
+        Ok(())
+    }
+
+    fn read_fields(f: &mut Obj<'_>) -> Result<Self, String> {
+        let max = DEVICE_MAX_PAYLOAD;
+        let len = if f.fields.has("payload_len") {
+            f.int("payload_len", 0, max as i64)? as usize
+        } else {
+            ProgName::PADDED_LEN
+        };
+        let name = f.text("name", max)?;
+        if name.len() > len {
+            return Err(format!(
+                "field `name` is {} bytes long, more than the {len}-byte payload \
+                 (give payload_len, up to {max})",
+                name.len()
+            ));
+        }
+        let mut payload = name;
+        payload.resize(len, 0);
+        // At most 64 bytes, so this cannot fail.
+        let name = ProgName::from_payload(&payload)
+            .ok_or_else(|| format!("a payload of {len} bytes is longer than {max}"))?;
+        Ok(ChangeProg(name))
+    }
 }
 
 fn read_response(kind: &str, f: &mut Obj<'_>) -> Result<ResponseBuf, String> {
