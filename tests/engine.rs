@@ -303,6 +303,15 @@ fn toy_bytes() -> impl Strategy<Value = Vec<u8>> {
     )
 }
 
+/// Whether a valid toy frame starts in `input` anywhere but at `starts`.
+fn has_false_frame(input: &[u8], starts: &[usize]) -> bool {
+    (0..input.len()).any(|i| {
+        input[i] == START
+            && !starts.contains(&i)
+            && matches!(TOY.check(&input[i..], true), Check::Frame(_))
+    })
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(if cfg!(miri) { 4 } else { 512 }))]
 
@@ -342,15 +351,19 @@ proptest! {
         // Garbage of start bytes and impossible lengths: every start byte in it
         // opens a candidate, and the last one reaches into the next frame. A
         // decoder that dropped a whole failed candidate would lose that frame.
-        // (Garbage that itself forms a valid frame overlapping a real one is
-        // the one case no checksum-based decoder can tell apart.)
+        // (Bytes that form a valid frame overlapping a real one, such as a
+        // start byte in a payload followed by garbage that completes it, are
+        // the one case no checksum-based decoder can tell apart: skipped.)
         let mut input = Vec::new();
         let mut want = Vec::new();
+        let mut starts = Vec::new();
         for (payload, garbage) in &frames {
             input.extend(garbage.iter().map(|g| if g % 2 == 0 { START } else { 9 + g % 100 }));
+            starts.push(input.len());
             input.extend(frame(payload));
             want.push(payload.clone());
         }
+        prop_assume!(!has_false_frame(&input, &starts));
         let (events, _) = run(TOY, &input, chunk);
         let got: Vec<Vec<u8>> = events.into_iter().filter_map(|e| e.ok().map(|f| f.message)).collect();
         let mut it = got.iter();
