@@ -1251,6 +1251,7 @@ fn deliver<F: FrameRules, C: Counter>(
     }
 }
 
+/// Count a frame and its bytes.
 #[inline(always)]
 fn count_frame<C: Counter>(stats: &mut Stats<C>, raw: &[u8]) {
     stats.frames = stats.frames.plus(1);

@@ -488,11 +488,10 @@ macro_rules! request_codec {
             }
 
             // `out` is exactly `payload_len` long (`Body`'s contract), and
-            // each row's writes and length come from the same fields.
+            // each row's offsets and length come from the same fields.
             fn write_payload(&self, out: &mut [u8]) -> Result<(), EncodeError> {
-                let mut _w = Fields::new(out);
                 match self {
-                    $(Self::$s(_r) => write_payload!(_w, _r, $payload),)*
+                    $(Self::$s(_r) => { write_payload!(out, _r, $payload); })*
                 }
                 Ok(())
             }
@@ -510,8 +509,14 @@ macro_rules! payload_size {
     (custom) => {
         None
     };
+    ($fields:tt) => {
+        Some(fields_size!($fields))
+    };
+}
+
+macro_rules! fields_size {
     ({ $($f:tt : $kind:ident $key:literal),* $(,)? }) => {
-        Some(0 $(+ kind_size!($kind))*)
+        0 $(+ kind_size!($kind))*
     };
 }
 
@@ -532,10 +537,7 @@ macro_rules! payload_len {
         $r.payload_len()
     };
     ($r:ident, $fields:tt) => {
-        match payload_size!($fields) {
-            Some(n) => n as usize,
-            None => 0,
-        }
+        fields_size!($fields)
     };
 }
 
@@ -584,41 +586,44 @@ macro_rules! display_payload {
 }
 
 macro_rules! write_payload {
-    ($w:ident, $r:ident, custom) => {
-        $r.write_payload(&mut $w)
+    ($out:ident, $r:ident, custom) => {
+        $r.write_payload($out)
     };
-    ($w:ident, $r:ident, { $($f:tt : $kind:ident $key:literal),* $(,)? }) => {{
-        $(write_kind!($w, $r.$f, $kind);)*
-    }};
+    ($out:ident, $r:ident, { $($fields:tt)* }) => {
+        write_fields!($out, $r, (0), $($fields)*)
+    };
 }
 
-macro_rules! write_kind {
-    ($w:ident, $v:expr, u16) => {
-        $w.put(&$v.to_le_bytes())
+/// A row's fields written at constant offsets (as `parse_fields` reads them).
+macro_rules! write_fields {
+    ($out:ident, $r:ident, $at:expr, $f:tt : $kind:ident $key:literal $(, $($rest:tt)*)?) => {
+        write_at!($out, $at, $r.$f, $kind);
+        write_fields!($out, $r, ($at + kind_size!($kind)), $($($rest)*)?)
     };
-    ($w:ident, $v:expr, i16) => {
-        $w.put(&$v.to_le_bytes())
+    ($out:ident, $r:ident, $at:expr, ) => {};
+}
+
+macro_rules! write_at {
+    ($out:ident, $at:expr, $v:expr, u16) => {
+        put_at($out, $at, &$v.to_le_bytes())
     };
-    ($w:ident, $v:expr, sigmap) => {{
+    ($out:ident, $at:expr, $v:expr, i16) => {
+        put_at($out, $at, &$v.to_le_bytes())
+    };
+    ($out:ident, $at:expr, $v:expr, sigmap) => {{
         if $v == 0 {
             return Err(EncodeError::OutOfRange {
                 field: "getBlocks sigmap (0 is refused by the device)",
             });
         }
-        $w.put(&[$v])
+        put_at($out, $at, &[$v])
     }};
-    ($w:ident, $v:expr, $kind:ident) => {
-        $w.put(&[$v])
+    ($out:ident, $at:expr, $v:expr, $kind:ident) => {
+        put_at($out, $at, &[$v])
     };
 }
 
 super::table::request_table!(request_codec);
-
-/// A payload written field by field (a write past its end is dropped).
-struct Fields<'a> {
-    bytes: &'a mut [u8],
-    at: usize,
-}
 
 /// Two bytes at `i`, little-endian (0 past the end: the length is checked
 /// first).
@@ -634,17 +639,11 @@ fn u8_at(p: &[u8], i: usize) -> u8 {
     p.get(i).copied().unwrap_or(0)
 }
 
-impl<'a> Fields<'a> {
-    fn new(bytes: &'a mut [u8]) -> Self {
-        Self { bytes, at: 0 }
-    }
-
-    fn put(&mut self, bytes: &[u8]) {
-        let end = self.at + bytes.len();
-        if let Some(slot) = self.bytes.get_mut(self.at..end) {
-            slot.copy_from_slice(bytes);
-        }
-        self.at = end;
+/// Write `bytes` at `i` (nothing past the end: the payload is exactly
+/// `payload_len` long).
+fn put_at(out: &mut [u8], i: usize, bytes: &[u8]) {
+    if let Some(slot) = out.get_mut(i..i + bytes.len()) {
+        slot.copy_from_slice(bytes);
     }
 }
 
@@ -702,8 +701,8 @@ impl ChangeProg {
         Ok(())
     }
 
-    fn write_payload(&self, w: &mut Fields<'_>) {
-        w.put(self.0.as_payload());
+    fn write_payload(&self, out: &mut [u8]) {
+        put_at(out, 0, self.0.as_payload());
     }
 }
 

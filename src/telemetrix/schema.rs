@@ -651,12 +651,16 @@ macro_rules! command_reader {
             buf: &'b mut Vec<u8>,
         ) -> Result<Command<'b>, String> {
             Ok(match kind {
-                $($name => read_row!(f, buf, Command (return Err("custom rows are read by hand".into())), $codec $($p)? { $($body)* }),)*
+                $($name => read_row!(f, buf, Command (return Err(CUSTOM_BY_HAND.into())), $codec $($p)? { $($body)* }),)*
                 other => return Err(format!("unknown type `{other}`")),
             })
         }
     };
 }
+
+/// What reading a `custom` row as `plain` gives: `read_plain` and
+/// `read_plain_report` are asked for `plain` rows only.
+const CUSTOM_BY_HAND: &str = "custom rows are read by hand";
 
 /// Whether a row is `plain`.
 macro_rules! row_is_plain {
@@ -764,7 +768,7 @@ macro_rules! report_reader {
             buf: &'b mut Vec<u8>,
         ) -> Result<Report<'b>, String> {
             Ok(match kind {
-                $($($name)|+ => read_row!(f, buf, Report (return Err("custom rows are read by hand".into())), [$($($v)+)+] $codec { $($body)* }),)*
+                $($($name)|+ => read_row!(f, buf, Report (return Err(CUSTOM_BY_HAND.into())), [$($($v)+)+] $codec { $($body)* }),)*
                 other => return Err(format!("unknown type `{other}`")),
             })
         }
@@ -1048,6 +1052,8 @@ macro_rules! module_data_reader {
                     .get(name(f, "subtype", SUBTYPES)?)
                     .copied()
                     .unwrap_or_default();
+                // `read_member!` takes the buffer the byte-list kinds read
+                // into; no module data row has one.
                 let _buf: &mut Vec<u8> = &mut Vec::new();
                 Ok(match subtype {
                     $($name => read_row!(f, _buf, $enum ($enum::read_custom(subtype, f)?), $codec $($p)? { $($body)* }),)*
