@@ -117,7 +117,10 @@
 //!   place: a message of 64 bytes (Telemetrix's `Report`) built with narrow
 //!   stores is then copied with wide loads (store-forwarding stalls, half of
 //!   the loop's samples), which `decode_each` avoids: 1.7–1.9× the loop on
-//!   the Telemetrix reports bench.
+//!   the Telemetrix reports bench. The frame the previous chunk cut is
+//!   completed first, from the bytes the framing asked for when it was kept
+//!   (not the whole chunk appended to the buffer and scanned there, as the
+//!   general step does): 6 % off the chunked Telemetrix row.
 //! * **Buffer fast paths.** A buffered frame that was all the buffer held empties
 //!   the buffer when it is emitted (no copy, no rescan on the next call).
 //! * **A byte path for firmware.** `push` and `poll` resolve the stored bytes
@@ -653,6 +656,13 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
         mut input: &[u8],
         mut on_event: impl FnMut(Event<'_, F::Message<'_>, F::Error>),
     ) {
+        self.apply_pending_drop();
+        // A frame the clean path kept at the end of the previous chunk:
+        // completed from the front of this one.
+        if let Some((offset, n)) = self.complete_kept(&mut input) {
+            let raw = prefix(&self.buf, n);
+            deliver(&self.framing, &mut self.stats, offset, raw, &mut on_event);
+        }
         loop {
             self.apply_pending_drop();
             // The clean stream's path, whatever the message's size: its event
@@ -713,6 +723,56 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
             }
         }
         Clean::General
+    }
+
+    /// The clean stream's frame cut by the end of the last chunk, completed
+    /// from the front of `input`: the bytes it still needs (what the framing
+    /// asked for when it was kept) are appended, and the framing is asked
+    /// again, on the frame's bytes only, until it answers. Returns the
+    /// frame's offset and length, now at the front of the buffer (and the
+    /// buffer otherwise empty), or `None` with nothing changed (no frame
+    /// kept, the stream not in sync, too little input, or anything but a
+    /// frame of exactly the bytes given), for the general step to decide.
+    /// By the framing's consistency the answer is the one the general step
+    /// would give on the whole input. Only on 64-bit hosts, as
+    /// [`clean_step`](Self::clean_step).
+    #[inline(always)]
+    fn complete_kept(&mut self, input: &mut &[u8]) -> Option<(u64, usize)> {
+        let stored = self.len;
+        // (In sync, or never verified: as `resolve` asks.)
+        if !cfg!(target_pointer_width = "64")
+            || stored == 0
+            || (!self.synced && F::VERIFY_AFTER_RESYNC)
+        {
+            return None;
+        }
+        let data: &[u8] = input;
+        let mut have = stored;
+        let mut want = self.need.max(stored + 1);
+        let n = loop {
+            // The bytes `have..want` (`want <= N`), if the input holds them.
+            let more = data.get(have - stored..want - stored)?;
+            copy_into(&mut self.buf, have, more);
+            have = want;
+            let frame = prefix(&self.buf, have);
+            if self.framing.find_start(frame) != 0 {
+                return None;
+            }
+            match self.framing.check(frame, false) {
+                Check::Frame(n) if n == have => break n,
+                Check::Need(n) if n > have && n <= N => want = n,
+                _ => return None,
+            }
+        };
+        let used = n - stored;
+        *input = data.get(used..).unwrap_or(&[]);
+        let offset = self.buf_offset;
+        self.stats.bytes = self.stats.bytes.plus(used);
+        self.buf_offset = offset.plus(n);
+        self.len = 0;
+        self.need = 0;
+        self.synced = true;
+        Some((offset.to_u64(), n))
     }
 
     /// Feed one byte (for interrupt handlers). The byte is always taken. It
@@ -1211,6 +1271,30 @@ fn prefix_of(bytes: &[u8], len: usize) -> &[u8] {
 #[inline(always)]
 fn prefix<const N: usize>(buf: &[u8; N], len: usize) -> &[u8] {
     buf.get(..len).unwrap_or(buf)
+}
+
+/// Copy `src` into `buf` at `at`, if it fits. Up to 8 bytes (the rest of a
+/// frame a chunk cut) are moved with two overlapping loads and stores, or
+/// three single bytes, without a call to `memcpy`: measured, 8 % off
+/// Telemetrix `decode/reports_chunk64` against `copy_from_slice`.
+#[inline(always)]
+fn copy_into<const N: usize>(buf: &mut [u8; N], at: usize, src: &[u8]) {
+    let Some(dst) = buf.get_mut(at..).and_then(|b| b.get_mut(..src.len())) else {
+        return;
+    };
+    let len = src.len();
+    if len > 8 {
+        dst.copy_from_slice(src);
+    } else if len >= 4 {
+        let (head, tail) = (&src[..4], &src[len - 4..]);
+        dst[..4].copy_from_slice(head);
+        dst[len - 4..].copy_from_slice(tail);
+    } else if len > 0 {
+        // First, middle and last: every byte of 1 to 3.
+        dst[0] = src[0];
+        dst[len / 2] = src[len / 2];
+        dst[len - 1] = src[len - 1];
+    }
 }
 
 /// Count and parse a frame: the framing's shortcut first, then the full parse.
