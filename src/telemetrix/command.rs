@@ -2,23 +2,20 @@
 
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
-use super::kind::{field_type, read_field, write_field, write_row};
+use super::kind::{bind_hook, field_type, read_field, write_field, write_row};
 use super::list::List;
 use super::module::{ModuleNew, MODULE_INIT_MAX};
 use super::quirk::command_quirk;
 use super::sensor::SensorNew;
 use super::wire::{
-    analog_pin_ok, command_id, counted, split_frame, Reader, Writer, COMMAND_PAYLOAD_MAX,
-    MAX_COMMAND_FRAME, MAX_COMMAND_LEN, PIN_COUNT,
+    analog_pin_ok, counted, split_frame, Reader, Writer, COMMAND_PAYLOAD_MAX, MAX_COMMAND_FRAME,
+    MAX_COMMAND_LEN, PIN_COUNT,
 };
 use crate::encode::check_room;
 use crate::{Encode, EncodeError};
 
-use command_id as id;
-
 /// The codec's parts that come from the command table: the dialect and
-/// `LEN` tables, `Command::id`, and the payloads of the `plain` rows (the
-/// `custom` ones are [`Command::write_custom`] and [`parse_custom`]).
+/// `LEN` tables, `Command::id`, and every row's payload writer.
 macro_rules! command_codec {
     ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
         $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
@@ -53,7 +50,7 @@ macro_rules! command_codec {
             fn write_payload(&self, w: &mut Writer<'_>) {
                 match *self {
                     $($(Command::$v { .. })|+ => {
-                        write_row!(self, w, Command, $codec $($p)? { $($body)* })
+                        write_row!(self, (w), Command, $codec $($p)? { $($body)* })
                     })*
                 }
             }
@@ -71,18 +68,24 @@ macro_rules! len_range {
     };
 }
 
-/// The parser's `match` on the command id: the arms of the `plain` rows from
-/// the command table, then the hand-written ones (`custom` rows, unknown
-/// ids), in one `match` so that the Pico links one compact function. A
-/// muncher, because a `custom` row contributes no arm.
+/// The parser's `match` on the command id: an arm per row (a `plain` row's
+/// fields read by their kind, a `custom` row's `parse` code), then the
+/// unknown ids, in one `match` so that the Pico links one compact function.
 macro_rules! parse_match {
     ([($dialect:ident, $r:ident, $cmd:ident) { $($custom:tt)* }] $($rows:tt)*) => {
         parse_match!(@rows ($dialect, $r, $cmd) [$($custom)*] [] $($rows)*)
     };
-    (@rows $names:tt $custom:tt [$($arms:tt)*]
+    (@rows ($dialect:ident, $r:ident, $cmd:ident) $custom:tt [$($arms:tt)*]
         $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
-        len $lens:tt custom { $($decl:tt)* }; $($rest:tt)*) => {
-        parse_match!(@rows $names $custom [$($arms)*] $($rest)*)
+        len $lens:tt custom { variants $vars:tt parse ($($param:ident),*) { $($body:tt)* } $($hooks:tt)* };
+        $($rest:tt)*) => {
+        parse_match!(@rows ($dialect, $r, $cmd) $custom [
+            $($arms)*
+            $n => {
+                bind_hook!(($($param),*) = ($dialect, &mut *$r, $cmd));
+                $($body)*
+            }
+        ] $($rest)*)
     };
     (@rows ($dialect:ident, $r:ident, $cmd:ident) $custom:tt [$($arms:tt)*]
         $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
@@ -236,7 +239,7 @@ macro_rules! command_enum {
     };
     (@rows [$($vars:tt)*]
         $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
-        len $lens:tt custom { $($decl:tt)* }; $($rest:tt)*) => {
+        len $lens:tt custom { variants { $($decl:tt)* } $($hooks:tt)* }; $($rest:tt)*) => {
         command_enum!(@rows [$($vars)* $($decl)*] $($rest)*);
     };
     (@rows [$($vars:tt)*]) => {
@@ -417,113 +420,6 @@ impl<'a> Command<'a> {
         self.write_payload(w);
         w.patch_len();
     }
-
-    /// Write the payload of a `custom` row of the command table.
-    fn write_custom(&self, w: &mut Writer<'_>) {
-        match self {
-            Command::SetPinMode { pin, mode } => {
-                w.u8(*pin);
-                match *mode {
-                    PinMode::DigitalInput { pull, report } => {
-                        w.u8(match pull {
-                            Pull::None => 0,
-                            Pull::Up => 3,
-                            Pull::Down => 4,
-                        });
-                        w.flag(report);
-                    }
-                    PinMode::DigitalOutput => w.u8(1),
-                    PinMode::PwmOutput => w.u8(2),
-                    PinMode::AnalogInput {
-                        differential,
-                        report,
-                    } => {
-                        w.u8(5);
-                        w.u16(differential);
-                        w.flag(report);
-                    }
-                }
-            }
-            Command::DigitalWrite { pin, value } => {
-                w.u8(*pin);
-                w.flag(*value);
-            }
-            Command::PwmWrite(pins) => {
-                for p in pins {
-                    w.u8(p.pin);
-                    w.u16(p.value);
-                }
-            }
-            Command::ModifyReporting(m) => {
-                let (kind, pin) = match *m {
-                    ModifyReporting::DisableAll => (0, 0),
-                    ModifyReporting::EnableAnalog { pin } => (1, pin),
-                    ModifyReporting::EnableDigital { pin } => (2, pin),
-                    ModifyReporting::DisableAnalog { pin } => (3, pin),
-                    ModifyReporting::DisableDigital { pin } => (4, pin),
-                };
-                w.u8(kind);
-                w.u8(pin);
-            }
-            Command::I2cRead {
-                port,
-                addr,
-                msg_id,
-                reg,
-                len,
-                no_stop,
-            } => w.bytes(&[*port, *addr, *msg_id, *reg, *len, *no_stop]),
-            Command::I2cReadUpstream {
-                port,
-                addr,
-                reg,
-                len,
-                no_stop,
-            } => w.bytes(&[*port, *addr, *reg, *len, *no_stop]),
-            Command::I2cWrite {
-                port,
-                addr,
-                msg_id,
-                no_stop,
-                data,
-            } => {
-                w.bytes(&[*port, *addr, *msg_id, data.len() as u8, *no_stop]);
-                w.bytes(data);
-            }
-            Command::I2cWriteUpstream {
-                port,
-                addr,
-                no_stop,
-                data,
-            } => {
-                w.bytes(&[*port, *addr, data.len() as u8, *no_stop]);
-                w.bytes(data);
-            }
-            Command::EncoderNew {
-                kind,
-                pin_a,
-                pin_b,
-                pulls,
-            } => {
-                w.u8(match kind {
-                    EncoderKind::Single => 1,
-                    EncoderKind::Quadrature => 2,
-                });
-                w.bytes(&[*pin_a, *pin_b]);
-                if let Some(pulls) = pulls {
-                    w.u8(u8::from(pulls.up) | (u8::from(pulls.down) << 1));
-                }
-            }
-            Command::SensorNew(s) => s.write(w),
-            Command::ModuleNew(m) => m.write(w),
-            Command::ModuleData { module_num, data } => {
-                w.u8(*module_num);
-                w.bytes(data);
-            }
-            // The `plain` rows: written by `write_payload`.
-            _ => {}
-        }
-    }
 }
 
 impl Encode for Command<'_> {
@@ -575,192 +471,11 @@ fn rgb(r: &mut Reader<'_>) -> Result<Rgb, Error> {
     Ok(Rgb { r: r_, g, b })
 }
 
-/// Parse a command's payload: the `plain` rows' arms come from the command
-/// table, the `custom` rows' are written here, all in one `match`.
+/// Parse a command's payload: every arm comes from the command table.
 fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>, Error> {
     let cmd = r.id();
     Ok(
         super::table::command_table!(parse_match, (dialect, r, cmd) {
-            id::SET_PIN_MODE => {
-                let pin = r.u8()?;
-                let mode = match r.u8()? {
-                    m @ (0 | 3 | 4) => PinMode::DigitalInput {
-                        pull: match m {
-                            3 => Pull::Up,
-                            4 => Pull::Down,
-                            _ => Pull::None,
-                        },
-                        report: r.flag("report_enable")?,
-                    },
-                    1 => PinMode::DigitalOutput,
-                    2 => PinMode::PwmOutput,
-                    5 => PinMode::AnalogInput {
-                        differential: r.u16()?,
-                        report: r.flag("report_enable")?,
-                    },
-                    _ => {
-                        return Err(Error::OutOfRange {
-                            id: cmd,
-                            field: "mode",
-                        })
-                    }
-                };
-                let pin_ok = match mode {
-                    PinMode::AnalogInput { .. } => analog_pin_ok(dialect, pin),
-                    _ => pin < PIN_COUNT,
-                };
-                ensure(pin_ok, cmd, "pin")?;
-                Command::SetPinMode { pin, mode }
-            }
-            // The firmware drives any non-zero level high (flagged as a quirk).
-            id::DIGITAL_WRITE => Command::DigitalWrite {
-                pin: r.pin("pin")?,
-                value: r.u8()? != 0,
-            },
-            id::PWM_WRITE => {
-                let mut pins = PwmPins::new();
-                // Whole triples; 1 or 2 trailing bytes (mirte 1.3's LEN range
-                // allows them) are ignored as the firmware ignores them, and
-                // flagged as a quirk.
-                while r.remaining() >= 3 {
-                    let pin = PwmPin {
-                        pin: r.pin("pin")?,
-                        value: r.u16()?,
-                    };
-                    pins.push(pin).map_err(|_| r.bad_length())?;
-                }
-                r.rest();
-                Command::PwmWrite(pins)
-            }
-            id::MODIFY_REPORTING => {
-                let kind = r.u8()?;
-                let pin = r.u8()?;
-                // Digital pins in mirte 1.3 are what a real host sends, although
-                // the firmware indexes them as pin - 26: accepted, and flagged as
-                // a quirk.
-                let digital_ok = pin < PIN_COUNT;
-                // Mirte 1.2's and upstream 1.1's clients send an analog pin's
-                // GPIO number (26..=30) unchecked where their firmware takes an
-                // ADC number: accepted as sent, and flagged as a quirk.
-                let analog_ok = analog_pin_ok(Dialect::Mirte13, pin) || analog_pin_ok(dialect, pin);
-                let m = match kind {
-                    0 if pin == 0 => ModifyReporting::DisableAll,
-                    1 if analog_ok => ModifyReporting::EnableAnalog { pin },
-                    3 if analog_ok => ModifyReporting::DisableAnalog { pin },
-                    2 if digital_ok => ModifyReporting::EnableDigital { pin },
-                    4 if digital_ok => ModifyReporting::DisableDigital { pin },
-                    0..=4 => {
-                        return Err(Error::OutOfRange {
-                            id: cmd,
-                            field: "pin",
-                        })
-                    }
-                    _ => {
-                        return Err(Error::OutOfRange {
-                            id: cmd,
-                            field: "type",
-                        })
-                    }
-                };
-                Command::ModifyReporting(m)
-            }
-            id::I2C_READ if dialect.is_mirte() => {
-                let (port, addr, msg_id, reg) = (port(r)?, i2c_addr(r)?, r.u8()?, r.u8()?);
-                let len = r.u8()?;
-                ensure((1..=57).contains(&len), cmd, "len")?;
-                let no_stop = r.u8()?;
-                ensure(matches!(no_stop, 0 | 1 | 254), cmd, "no_stop")?;
-                Command::I2cRead {
-                    port,
-                    addr,
-                    msg_id,
-                    reg,
-                    len,
-                    no_stop,
-                }
-            }
-            id::I2C_READ => {
-                let (port, addr, reg) = (port(r)?, i2c_addr(r)?, r.u8()?);
-                let len = r.u8()?;
-                ensure((1..=57).contains(&len), cmd, "len")?;
-                let no_stop = r.u8()?;
-                ensure(no_stop <= 1, cmd, "no_stop")?;
-                Command::I2cReadUpstream {
-                    port,
-                    addr,
-                    reg,
-                    len,
-                    no_stop,
-                }
-            }
-            id::I2C_WRITE if dialect.is_mirte() => {
-                let (port, addr, msg_id) = (port(r)?, i2c_addr(r)?, r.u8()?);
-                let n = r.u8()?;
-                ensure(n >= 1, cmd, "len")?;
-                let no_stop = r.u8()?;
-                ensure(no_stop <= 1, cmd, "no_stop")?;
-                Command::I2cWrite {
-                    port,
-                    addr,
-                    msg_id,
-                    no_stop,
-                    data: r.take(usize::from(n))?,
-                }
-            }
-            id::I2C_WRITE => {
-                let (port, addr) = (port(r)?, i2c_addr(r)?);
-                let n = r.u8()?;
-                ensure(n >= 1, cmd, "len")?;
-                let no_stop = r.u8()?;
-                ensure(no_stop <= 1, cmd, "no_stop")?;
-                Command::I2cWriteUpstream {
-                    port,
-                    addr,
-                    no_stop,
-                    data: r.take(usize::from(n))?,
-                }
-            }
-            id::ENCODER_NEW => {
-                // The firmware sets up a quadrature encoder for any type but 1;
-                // type 3 is accepted as that, and flagged as a quirk.
-                let kind = match r.u8()? {
-                    1 => EncoderKind::Single,
-                    2 | 3 => EncoderKind::Quadrature,
-                    _ => {
-                        return Err(Error::OutOfRange {
-                            id: cmd,
-                            field: "type",
-                        })
-                    }
-                };
-                let pin_a = r.pin("pin_a")?;
-                let pin_b = r.pin("pin_b")?;
-                ensure(kind == EncoderKind::Quadrature || pin_b == 0, cmd, "pin_b")?;
-                let pulls = if dialect == Dialect::Mirte13 {
-                    let bits = r.u8()?;
-                    ensure(bits <= 3, cmd, "pulls")?;
-                    Some(Pulls {
-                        up: bits & 1 != 0,
-                        down: bits & 2 != 0,
-                    })
-                } else {
-                    None
-                };
-                Command::EncoderNew {
-                    kind,
-                    pin_a,
-                    pin_b,
-                    pulls,
-                }
-            }
-            id::SENSOR_NEW => Command::SensorNew(SensorNew::parse(r, dialect)?),
-            id::MODULE_NEW => Command::ModuleNew(ModuleNew::parse(r)?),
-            id::MODULE_DATA => {
-                let module_num = r.u8()?;
-                let data = r.rest();
-                ensure(!data.is_empty(), cmd, "data")?;
-                Command::ModuleData { module_num, data }
-            }
             _ => return Err(Error::UnknownId { id: cmd }),
         }),
     )

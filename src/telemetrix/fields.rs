@@ -6,6 +6,7 @@ use core::fmt;
 
 use super::buf::{CommandBuf, Message, MessageBuf, ReportBuf};
 use super::command::{Command, ModifyReporting, PinMode, PwmPin, Rgb};
+use super::kind::bind_hook;
 use super::list::List;
 use super::module::{
     HiwonderCommand, ModuleCommand, ModuleInit, ModuleNew, ModuleReport, ModuleType,
@@ -271,12 +272,19 @@ macro_rules! command_fields {
 }
 
 /// Visit a row's payload: `$value` is the `$enum` (a `plain` row's variant
-/// is named after `plain`, or in brackets by a report row); `$view` visits a
-/// `custom` row's.
+/// is named after `plain`, or in brackets by a report row); a `custom` row's
+/// `fields` arms see `$view` and `$w` by the names the row gives them.
 macro_rules! visit_row {
-    ($view:ident, $w:ident, $enum:ident ($value:expr), $([$($vs:ident)+])? custom $($rest:tt)*) => {
-        $view.visit_custom($w)
-    };
+    ($view:ident, $w:ident, $enum:ident ($value:expr), $([$($vs:ident)+])? custom {
+        variants $vars:tt parse $pp:tt $pb:tt write $wp:tt $wb:tt
+        fields ($($param:ident),*) { $($arms:tt)* } $($hooks:tt)*
+    }) => {{
+        bind_hook!(($($param),*) = ($view, $w));
+        match *$value {
+            $($arms)*
+            _ => {}
+        }
+    }};
     ($view:ident, $w:ident, $enum:ident ($value:expr), [$p:ident] plain $body:tt) => {
         visit_row!($view, $w, $enum ($value), plain $p $body)
     };
@@ -367,161 +375,50 @@ impl Visit for CommandView<'_, '_> {
     }
 }
 
-impl CommandView<'_, '_> {
-    /// The payload fields of a `custom` row of the command table.
-    fn visit_custom(&self, w: &mut W<'_>) {
-        match *self.command {
-            Command::SetPinMode { pin, mode } => {
-                w.u("pin", pin);
-                w.s("mode", mode.name());
-                match mode {
-                    PinMode::DigitalInput { report, .. } => w.flag("report_enable", report),
-                    PinMode::AnalogInput {
-                        differential,
-                        report,
-                    } => {
-                        w.u("differential", differential);
-                        w.flag("report_enable", report);
-                    }
-                    PinMode::DigitalOutput | PinMode::PwmOutput => {}
-                }
-            }
-            Command::DigitalWrite { pin, value } => {
-                w.u("pin", pin);
-                w.level("value", value);
-            }
-            Command::PwmWrite(pins) => w.objs("pins", &pins),
-            Command::ModifyReporting(action) => {
-                w.s("action", action.name());
-                match action {
-                    ModifyReporting::DisableAll => {}
-                    ModifyReporting::EnableAnalog { pin }
-                    | ModifyReporting::EnableDigital { pin }
-                    | ModifyReporting::DisableAnalog { pin }
-                    | ModifyReporting::DisableDigital { pin } => w.u("pin", pin),
-                }
-            }
-            Command::I2cRead {
-                port,
-                addr,
-                msg_id,
-                reg,
-                len,
-                no_stop,
-            } => {
-                w.u("port", port);
-                w.u("addr", addr);
-                w.u("msg_id", msg_id);
-                w.u("reg", reg);
-                w.u("n", len);
-                w.u("no_stop", no_stop);
-            }
-            Command::I2cReadUpstream {
-                port,
-                addr,
-                reg,
-                len,
-                no_stop,
-            } => {
-                w.u("port", port);
-                w.u("addr", addr);
-                w.u("reg", reg);
-                w.u("n", len);
-                w.u("no_stop", no_stop);
-            }
-            Command::I2cWrite {
-                port,
-                addr,
-                msg_id,
-                no_stop,
-                data,
-            } => {
-                w.u("port", port);
-                w.u("addr", addr);
-                w.u("msg_id", msg_id);
-                w.u("no_stop", no_stop);
-                w.bytes("data", data);
-            }
-            Command::I2cWriteUpstream {
-                port,
-                addr,
-                no_stop,
-                data,
-            } => {
-                w.u("port", port);
-                w.u("addr", addr);
-                w.u("no_stop", no_stop);
-                w.bytes("data", data);
-            }
-            Command::EncoderNew {
-                kind,
-                pin_a,
-                pin_b,
-                pulls,
-            } => {
-                w.s("kind", kind.name());
-                w.u("pin_a", pin_a);
-                w.u("pin_b", pin_b);
-                // Only mirte 1.3 sends the pulls byte.
-                if let Some(pulls) = pulls {
-                    w.obj(
-                        "pulls",
-                        &FnVisit(|o: &mut W<'_>| {
-                            o.flag("up", pulls.up);
-                            o.flag("down", pulls.down);
-                        }),
-                    );
-                }
-            }
-            Command::SensorNew(SensorNew::Check { sensor_type }) => {
+impl Visit for SensorNew {
+    fn visit(&self, w: &mut W<'_>) {
+        match *self {
+            SensorNew::Check { sensor_type } => {
                 w.s("subtype", "check");
                 w.type_byte("sensor_type", sensor_type, SensorType::NAMES);
             }
-            Command::SensorNew(SensorNew::Add {
+            SensorNew::Add {
                 sensor_num,
                 sensor_type,
-                settings,
-            }) => {
+                ref settings,
+            } => {
                 w.s("subtype", "add");
                 w.u("sensor_num", sensor_num);
                 w.s("sensor_type", sensor_type.name());
-                w.bytes("settings", &settings);
+                w.bytes("settings", settings);
             }
-            Command::SensorNew(SensorNew::AddMirte12 {
+            SensorNew::AddMirte12 {
                 sensor_num,
                 sensor_type,
-                settings,
-            }) => {
+                ref settings,
+            } => {
                 w.s("subtype", "add");
                 w.u("sensor_num", sensor_num);
                 w.s("sensor_type", sensor_type.name());
-                w.bytes("settings", &settings);
+                w.bytes("settings", settings);
             }
-            Command::ModuleNew(ModuleNew::Check { module_type }) => {
+        }
+    }
+}
+
+impl Visit for ModuleNew<'_> {
+    fn visit(&self, w: &mut W<'_>) {
+        match *self {
+            ModuleNew::Check { module_type } => {
                 w.s("subtype", "check");
                 w.type_byte("module_type", module_type, ModuleType::NAMES);
             }
-            Command::ModuleNew(ModuleNew::Add { module_num, init }) => {
+            ModuleNew::Add { module_num, init } => {
                 w.s("subtype", "add");
                 w.u("module_num", module_num);
                 w.s("module_type", init.module_type().name());
                 w.obj("init", &FnVisit(|o: &mut W<'_>| module_init(&init, o)));
             }
-            Command::ModuleData { module_num, data } => {
-                w.u("module_num", module_num);
-                let typed = self
-                    .module_type
-                    .and_then(|t| ModuleData::parse(t, data).map(|m| (t, m)));
-                match typed {
-                    Some((module_type, message)) => {
-                        w.s("module_type", module_type.name());
-                        w.obj("message", &message);
-                    }
-                    None => w.bytes("data", data),
-                }
-            }
-            // The `plain` rows: visited by `payload`.
-            _ => {}
         }
     }
 }
@@ -621,27 +518,6 @@ macro_rules! module_data_fields {
 super::table::hiwonder_table!(module_data_fields);
 super::table::ssd1306_table!(module_data_fields);
 
-impl HiwonderCommand {
-    fn visit_custom(&self, o: &mut W<'_>) {
-        match self {
-            HiwonderCommand::SetAngle(moves) => o.objs("moves", moves),
-            HiwonderCommand::Enable { enabled, servos } => {
-                o.flag("enabled", *enabled);
-                o.bytes("servos", servos);
-            }
-            _ => {}
-        }
-    }
-}
-
-impl Ssd1306Command {
-    fn visit_custom(&self, o: &mut W<'_>) {
-        if let Ssd1306Command::Text(text) = self {
-            o.v("text", V::Latin1(text));
-        }
-    }
-}
-
 /// A mirte 1.3 sonar distance: centimetres, or the name of a sentinel.
 fn sonar_cm(w: &mut W<'_>, cm: u16) {
     match cm {
@@ -659,129 +535,6 @@ impl Visit for ReportView<'_, '_> {
             w.s("also", also);
         }
         self.payload(w);
-    }
-}
-
-impl ReportView<'_, '_> {
-    /// The payload fields of a `custom` row of the report table.
-    fn visit_custom(&self, w: &mut W<'_>) {
-        match *self.report {
-            Report::Digital { pin, value } => {
-                w.u("pin", pin);
-                w.level("value", value);
-            }
-            Report::Analog { pin, value } => {
-                w.u("pin", pin);
-                w.u("value", value);
-            }
-            Report::I2cWrite {
-                port,
-                msg_id,
-                result,
-            } => {
-                w.u("port", port);
-                w.u("msg_id", msg_id);
-                w.i("result", result);
-            }
-            Report::I2cWriteFailed { port, addr, stale } => {
-                w.u("port", port);
-                w.u("addr", addr);
-                w.u("stale", stale);
-            }
-            Report::I2cRead {
-                port,
-                msg_id,
-                reg,
-                data,
-            } => {
-                w.u("port", port);
-                w.u("msg_id", msg_id);
-                w.u("reg", reg);
-                w.bytes("data", data);
-            }
-            Report::I2cReadUpstream {
-                port,
-                addr,
-                reg,
-                data,
-            } => {
-                w.u("port", port);
-                w.u("addr", addr);
-                w.u("reg", reg);
-                w.bytes("data", data);
-            }
-            Report::Sonar(sonar) => match sonar {
-                Sonar::WithEcho { trig, echo, cm } => {
-                    w.u("trig", trig);
-                    w.u("echo", echo);
-                    sonar_cm(w, cm);
-                }
-                Sonar::TrigOnly { trig, cm } => {
-                    w.u("trig", trig);
-                    sonar_cm(w, cm);
-                }
-                Sonar::MetresCm { trig, m, cm } => {
-                    w.u("trig", trig);
-                    w.u("m", m);
-                    w.u("cm", cm);
-                }
-                Sonar::CmHundredths {
-                    trig,
-                    cm,
-                    hundredths,
-                } => {
-                    w.u("trig", trig);
-                    w.u("cm", cm);
-                    w.u("hundredths", hundredths);
-                }
-            },
-            Report::Dht {
-                pin,
-                humidity,
-                humidity_hundredths,
-                temp,
-                temp_hundredths,
-            } => {
-                w.u("pin", pin);
-                w.u("hum_int", humidity);
-                w.u("hum_hundredths", humidity_hundredths);
-                w.i("temp_int", temp);
-                w.i("temp_hundredths", temp_hundredths);
-            }
-            Report::Encoder { pin, steps } => {
-                w.u("pin_a", pin);
-                w.i("steps", steps);
-            }
-            Report::Sensor {
-                sensor_num,
-                ref reading,
-            } => {
-                w.u("sensor_num", sensor_num);
-                w.s("sensor_type", reading.sensor_type().name());
-                w.obj("reading", reading);
-            }
-            Report::SensorSupported {
-                sensor_type,
-                supported,
-            } => {
-                w.type_byte("sensor_type", sensor_type, SensorType::NAMES);
-                w.flag("supported", supported);
-            }
-            Report::ModuleSupported {
-                module_type,
-                supported,
-            } => {
-                w.type_byte("module_type", module_type, ModuleType::NAMES);
-                w.flag("supported", supported);
-            }
-            Report::Module { module_num, report } => {
-                w.u("module_num", module_num);
-                w.s("module_type", report.module_type().name());
-                w.obj("message", &report);
-            }
-            // `plain` rows and unknown ids: `payload`.
-            _ => {}
-        }
     }
 }
 

@@ -147,13 +147,24 @@ macro_rules! write_field {
 }
 
 /// Write a row's payload: a `plain` row's fields in wire order (its variant
-/// of `$enum` is named after `plain`), a `custom` row's by `write_custom`.
+/// of `$enum` is named after `plain`, or in brackets by a report row), a
+/// `custom` row's by its `write` arms, with its parameters bound to `$w`
+/// and the consumer's other values.
 macro_rules! write_row {
-    ($value:ident, $w:ident, $enum:ident, custom { $($decl:tt)* }) => {
-        $value.write_custom($w)
+    ($value:ident, ($w:ident $(, $ctx:ident)*), $enum:ident, $([$($vs:ident)+])? custom {
+        variants $vars:tt parse $pp:tt $pb:tt write ($($param:ident),*) { $($arms:tt)* } $($hooks:tt)*
+    }) => {{
+        $crate::telemetrix::kind::bind_hook!(($($param),*) = ($w $(, $ctx)*));
+        match *$value {
+            $($arms)*
+            _ => {}
+        }
+    }};
+    ($value:ident, $ws:tt, $enum:ident, [$p:ident] plain $body:tt) => {
+        write_row!($value, $ws, $enum, plain $p $body)
     };
-    ($value:ident, $w:ident, $enum:ident, plain $p:ident {}) => {{}};
-    ($value:ident, $w:ident, $enum:ident, plain $p:ident {
+    ($value:ident, $ws:tt, $enum:ident, plain $p:ident {}) => {{}};
+    ($value:ident, ($w:ident $(, $ctx:ident)*), $enum:ident, plain $p:ident {
         $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)?
     }) => {
         if let $enum::$p { $($f),* } = *$value {
@@ -162,4 +173,14 @@ macro_rules! write_row {
     };
 }
 
-pub(crate) use {field_type, read_field, write_field, write_row};
+/// Bind a `custom` row's hook parameters (the names the row's code uses,
+/// in the order the table's docs give) to the consumer's values: the row's
+/// own identifiers, so that macro hygiene lets its code see them.
+macro_rules! bind_hook {
+    (($($param:ident),*) = ($($value:expr),*)) => {
+        #[allow(unused_variables)]
+        let ($($param,)*) = ($($value,)*);
+    };
+}
+
+pub(crate) use {bind_hook, field_type, read_field, write_field, write_row};

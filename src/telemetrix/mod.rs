@@ -256,21 +256,21 @@
 //!    `tests/schema_telemetrix.rs` (frame ↔ JSON line).
 //!
 //! A command whose layout depends on its content or its dialect is a
-//! `custom` row: the row carries its variants, and its arms are written in
-//! `parse_payload` and `write_custom` (`command.rs`), `visit_custom`
-//! (`fields.rs`) and `read_command` (`schema.rs`). Reports have a table of
-//! their own in the same file (`report_table!`), with rows of the same
-//! shape: the id, its [`report_id`] constant, the dialects, the `type`
+//! `custom` row: the row carries its variants and its code, each piece with
+//! the names it works on (`parse(dialect, r, id)`, `write(w)`,
+//! `fields(view, w)`, `read(f, dialect, buf, raw)`; the table's module docs
+//! say what each is), so that it too is one declaration. Reports have a
+//! table of their own in the same file (`report_table!`), with rows of the
+//! same shape: the id, its [`report_id`] constant, the dialects, the `type`
 //! names with their variants and the payload (`plain` or `custom`). It
 //! gives the report ids, the report dialect table, [`Report::NAMES`],
-//! [`Report::name`], [`Report::id`], the [`Report`] enum, and for the
-//! `plain` rows encode, parse and the serde fields and reader; the `custom`
-//! rows' arms are in `report.rs` (`parse_payload`, `write_custom`),
-//! `fields.rs` and `schema.rs`, the `LEN` check in `report_len_ok`, and the
-//! streamed fast path in `fast.rs`. The field kinds' Rust types, reads and
-//! writes are in `kind.rs`, shared by all tables. The MODULE_DATA messages
-//! that start with a subtype byte ([`HiwonderCommand`], [`Ssd1306Command`])
-//! have a table per module type in the same file, one row per subtype.
+//! [`Report::name`], [`Report::id`], the [`Report`] enum, encode, parse and
+//! the serde fields and reader; the `LEN` check is `report_len_ok`, and the
+//! streamed fast path `fast.rs` (a shortcut its tests hold to the table's
+//! parse). The field kinds' Rust types, reads and writes are in `kind.rs`,
+//! shared by all tables. The MODULE_DATA messages that start with a subtype
+//! byte ([`HiwonderCommand`], [`Ssd1306Command`]) have a table per module
+//! type in the same file, one row per subtype.
 
 mod buf;
 mod command;

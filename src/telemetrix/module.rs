@@ -8,7 +8,7 @@
 //! and are decoded to [`ModuleReport`].
 
 use super::error::{ensure, Error};
-use super::kind::{field_type, read_field, write_field, write_row};
+use super::kind::{bind_hook, field_type, read_field, write_field, write_row};
 use super::list::{List, Payload};
 use super::wire::{command_id, Reader, Writer, COMMAND_PAYLOAD_MAX};
 use crate::EncodeError;
@@ -317,8 +317,8 @@ macro_rules! module_data_codec {
         ] $($rest)*);
     };
     (@enum $head:tt [$($vars:tt)*]
-        $(#[$vm:meta])* $n:literal $name:literal [$($v:ident),+] custom { $($decl:tt)* };
-        $($rest:tt)*) => {
+        $(#[$vm:meta])* $n:literal $name:literal [$($v:ident),+]
+        custom { variants { $($decl:tt)* } $($hooks:tt)* }; $($rest:tt)*) => {
         module_data_codec!(@enum $head [$($vars)* $($decl)*] $($rest)*);
     };
     (@enum [$(#[$em:meta])* $enum:ident] [$($vars:tt)*]) => {
@@ -337,7 +337,7 @@ macro_rules! module_data_codec {
                 match *self {
                     $($($enum::$v { .. })|+ => {
                         w.u8($n);
-                        write_row!(self, w, $enum, $codec $($p)? { $($body)* })
+                        write_row!(self, (w), $enum, $codec $($p)? { $($body)* })
                     })*
                 }
             }
@@ -364,9 +364,12 @@ macro_rules! module_data_codec {
 
 /// Parse one row of a module data table after its subtype byte.
 macro_rules! data_row {
-    ($r:ident, $id:ident, $n:literal, $enum:ident, custom { $($decl:tt)* }) => {
-        $enum::parse_custom($n, &mut $r)?
-    };
+    ($r:ident, $id:ident, $n:literal, $enum:ident, custom {
+        variants $vars:tt parse ($($param:ident),*) { $($body:tt)* } $($hooks:tt)*
+    }) => {{
+        bind_hook!(($($param),*) = (&mut $r, $id));
+        $($body)*
+    }};
     ($r:ident, $id:ident, $n:literal, $enum:ident, plain $p:ident {
         $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)?
     }) => {
@@ -399,57 +402,6 @@ impl ModuleCommand for HiwonderCommand {
 
     fn parse(data: &[u8]) -> Result<Self, Error> {
         Self::parse_data(data)
-    }
-}
-
-impl HiwonderCommand {
-    /// The data after the subtype byte of a `custom` row.
-    fn write_custom(&self, w: &mut Writer<'_>) {
-        match self {
-            HiwonderCommand::SetAngle(moves) => {
-                w.u8(moves.len() as u8);
-                for m in moves {
-                    w.u8(m.idx);
-                    w.u16(m.centideg);
-                    w.u16(m.time_ms);
-                }
-            }
-            HiwonderCommand::Enable { enabled, servos } => {
-                w.u8(servos.len() as u8);
-                w.flag(*enabled);
-                w.bytes(servos);
-            }
-            _ => {}
-        }
-    }
-
-    /// A `custom` row's data after its subtype byte.
-    fn parse_custom(subtype: u8, r: &mut Reader<'_>) -> Result<Self, Error> {
-        let id = r.id();
-        Ok(match subtype {
-            1 => {
-                let count = r.u8()?;
-                ensure((1..=5).contains(&count), id, "count")?;
-                let mut moves = List::new();
-                for _ in 0..count {
-                    let m = ServoMove {
-                        idx: r.u8()?,
-                        centideg: r.u16()?,
-                        time_ms: r.u16()?,
-                    };
-                    ensure(m.centideg <= MAX_CENTIDEG, id, "centideg")?;
-                    moves.push(m).map_err(|_| r.bad_length())?;
-                }
-                HiwonderCommand::SetAngle(moves)
-            }
-            _ => {
-                let count = r.u8()?;
-                let enabled = r.flag("enabled")?;
-                let servos =
-                    List::from_slice(r.take(usize::from(count))?).map_err(|_| r.bad_length())?;
-                HiwonderCommand::Enable { enabled, servos }
-            }
-        })
     }
 }
 
@@ -515,24 +467,6 @@ impl ModuleCommand for Ssd1306Command {
 
     fn parse(data: &[u8]) -> Result<Self, Error> {
         Self::parse_data(data)
-    }
-}
-
-impl Ssd1306Command {
-    /// The data after the subtype byte of a `custom` row (TEXT).
-    fn write_custom(&self, w: &mut Writer<'_>) {
-        if let Ssd1306Command::Text(text) = self {
-            w.u8(text.len() as u8);
-            w.bytes(text);
-        }
-    }
-
-    /// A `custom` row's data after its subtype byte (TEXT).
-    fn parse_custom(_subtype: u8, r: &mut Reader<'_>) -> Result<Self, Error> {
-        let n = r.u8()?;
-        ensure(n <= 26, r.id(), "len")?;
-        let text = List::from_slice(r.take(usize::from(n))?).map_err(|_| r.bad_length())?;
-        Ok(Ssd1306Command::Text(text))
     }
 }
 

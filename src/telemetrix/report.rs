@@ -3,7 +3,7 @@
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
 use super::fast;
-use super::kind::{field_type, read_field, write_field};
+use super::kind::{bind_hook, field_type, read_field, write_field, write_row};
 use super::module::{module_report_len_ok, ModuleReport};
 use super::quirk::report_quirk;
 use super::sensor::{SensorReading, SensorType};
@@ -250,7 +250,7 @@ macro_rules! report_enum {
     };
     (@rows [$($vars:tt)*]
         $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] { $($name:literal [$($v:ident),+]),+ }
-        custom { $($decl:tt)* }; $($rest:tt)*) => {
+        custom { variants { $($decl:tt)* } $($hooks:tt)* }; $($rest:tt)*) => {
         report_enum!(@rows [$($vars)* $($decl)*] $($rest)*);
     };
     (@rows [$($vars:tt)*]) => {
@@ -286,8 +286,7 @@ macro_rules! report_enum {
 super::table::report_table!(report_enum);
 
 /// The codec's parts that come from the report table: `Report::id` and
-/// the payloads of the `plain` rows (the `custom` ones are
-/// [`Report::write_custom`]).
+/// every row's payload writer.
 macro_rules! report_codec {
     ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
         { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
@@ -303,7 +302,7 @@ macro_rules! report_codec {
             fn write_payload(&self, w: &mut Writer<'_>, dialect: Dialect) {
                 match *self {
                     $($($(Report::$v { .. })|+)|+ => {
-                        write_report_row!(self, w, dialect, [$($($v)+)+] $codec { $($body)* })
+                        write_row!(self, (w, dialect), Report, [$($($v)+)+] $codec { $($body)* })
                     })*
                     Report::Unknown { payload, .. } => w.bytes(payload),
                 }
@@ -312,29 +311,24 @@ macro_rules! report_codec {
     };
 }
 
-/// Write a report row's payload.
-macro_rules! write_report_row {
-    ($report:ident, $w:ident, $dialect:ident, $vs:tt custom { $($decl:tt)* }) => {
-        $report.write_custom($w, $dialect)
-    };
-    ($report:ident, $w:ident, $dialect:ident, [$p:ident]
-        plain { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
-        if let Report::$p { $($f),* } = *$report {
-            $(write_field!($w, $f, $kind $(($($arg)*))?);)*
-        }
-    };
-}
-
-/// The parser's `match` on the report id: the arms of the `plain` rows from
-/// the report table, then the hand-written ones (`custom` rows, unknown ids).
+/// The parser's `match` on the report id: an arm per row (a `plain` row's
+/// fields read by their kind, a `custom` row's `parse` code), then the
+/// unknown ids.
 macro_rules! parse_report_match {
     ([($dialect:ident, $r:ident, $rid:ident) { $($custom:tt)* }] $($rows:tt)*) => {
         parse_report_match!(@rows ($dialect, $r, $rid) [$($custom)*] [] $($rows)*)
     };
-    (@rows $names:tt $custom:tt [$($arms:tt)*]
+    (@rows ($dialect:ident, $r:ident, $rid:ident) $custom:tt [$($arms:tt)*]
         $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] { $($name:literal [$($v:ident),+]),+ }
-        custom { $($decl:tt)* }; $($rest:tt)*) => {
-        parse_report_match!(@rows $names $custom [$($arms)*] $($rest)*)
+        custom { variants $vars:tt parse ($($param:ident),*) { $($body:tt)* } $($hooks:tt)* };
+        $($rest:tt)*) => {
+        parse_report_match!(@rows ($dialect, $r, $rid) $custom [
+            $($arms)*
+            $n => {
+                bind_hook!(($($param),*) = ($dialect, &mut *$r, $rid));
+                $($body)*
+            }
+        ] $($rest)*)
     };
     (@rows ($dialect:ident, $r:ident, $rid:ident) $custom:tt [$($arms:tt)*]
         $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] { $name:literal [$p:ident] }
@@ -454,105 +448,6 @@ impl Report<'_> {
         self.write_payload(w, dialect);
         w.patch_len();
     }
-
-    /// The payload of a `custom` row of the report table.
-    fn write_custom(&self, w: &mut Writer<'_>, dialect: Dialect) {
-        match self {
-            Report::Digital { pin, value } => {
-                w.u8(*pin);
-                w.flag(*value);
-            }
-            Report::Analog { pin, value } => {
-                w.u8(*pin);
-                w.u16(*value);
-            }
-            Report::I2cWrite {
-                port,
-                msg_id,
-                result,
-            } => {
-                w.bytes(&[*port, *msg_id]);
-                w.i8(*result);
-            }
-            Report::I2cWriteFailed { port, addr, stale } => w.bytes(&[*port, *addr, *stale]),
-            Report::I2cRead {
-                port,
-                msg_id,
-                reg,
-                data,
-            } => {
-                w.bytes(&[*port, *msg_id, *reg, data.len() as u8, 0]);
-                w.bytes(data);
-            }
-            Report::I2cReadUpstream {
-                port,
-                addr,
-                reg,
-                data,
-            } => {
-                w.bytes(&[*port, *addr, *reg, data.len() as u8]);
-                w.bytes(data);
-            }
-            Report::Sonar(s) => match *s {
-                Sonar::WithEcho { trig, echo, cm } => {
-                    w.bytes(&[trig, echo]);
-                    w.u16(cm);
-                }
-                Sonar::TrigOnly { trig, cm } => {
-                    w.u8(trig);
-                    w.u16(cm);
-                }
-                Sonar::MetresCm { trig, m, cm } => w.bytes(&[trig, m, cm]),
-                Sonar::CmHundredths {
-                    trig,
-                    cm,
-                    hundredths,
-                } => w.bytes(&[trig, cm, hundredths]),
-            },
-            Report::Dht {
-                pin,
-                humidity,
-                humidity_hundredths,
-                temp,
-                temp_hundredths,
-            } => {
-                w.bytes(&[*pin, *humidity, *humidity_hundredths]);
-                w.i8(*temp);
-                w.i8(*temp_hundredths);
-            }
-            Report::Encoder { pin, steps } => {
-                w.u8(*pin);
-                w.i8(*steps);
-            }
-            Report::Sensor {
-                sensor_num,
-                reading,
-            } => {
-                w.bytes(&[*sensor_num, reading.sensor_type().as_u8()]);
-                reading.write(w, dialect);
-            }
-            Report::SensorSupported {
-                sensor_type,
-                supported,
-            } => {
-                w.bytes(&[0, *sensor_type]);
-                w.flag(*supported);
-            }
-            Report::ModuleSupported {
-                module_type,
-                supported,
-            } => {
-                w.bytes(&[0, *module_type]);
-                w.flag(*supported);
-            }
-            Report::Module { module_num, report } => {
-                w.u8(*module_num);
-                report.write(w);
-            }
-            // `plain` rows: `write_payload`.
-            _ => {}
-        }
-    }
 }
 
 impl Encode for Report<'_> {
@@ -636,137 +531,6 @@ fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Report<'a>,
     let rid = r.id();
     Ok(
         super::table::report_table!(parse_report_match, (dialect, r, rid) {
-            id::DIGITAL => Report::Digital {
-                pin: r.pin("pin")?,
-                value: r.flag("value")?,
-            },
-            id::ANALOG => {
-                let pin = r.u8()?;
-                // mirte 1.3 builds before the GPIO renumbering still send ADC
-                // numbers, and the version was not bumped.
-                let ok = analog_pin_ok(dialect, pin) || analog_pin_ok(Dialect::Mirte12, pin);
-                ensure(ok, rid, "pin")?;
-                let value = r.u16()?;
-                ensure(value <= 4095, rid, "value")?;
-                Report::Analog { pin, value }
-            }
-            id::I2C_WRITE if dialect.is_mirte() => Report::I2cWrite {
-                port: port(r)?,
-                msg_id: r.u8()?,
-                result: r.i8()?,
-            },
-            id::I2C_WRITE => Report::I2cWriteFailed {
-                port: port(r)?,
-                addr: i2c_addr(r)?,
-                stale: r.u8()?,
-            },
-            id::I2C_READ if dialect.is_mirte() => {
-                let (port, msg_id, reg) = (port(r)?, r.u8()?, r.u8()?);
-                let n = r.u8()?;
-                ensure(r.u8()? == 0, rid, "pad")?;
-                Report::I2cRead {
-                    port,
-                    msg_id,
-                    reg,
-                    data: r.take(usize::from(n))?,
-                }
-            }
-            id::I2C_READ => {
-                let (port, addr, reg) = (port(r)?, i2c_addr(r)?, r.u8()?);
-                let n = r.u8()?;
-                Report::I2cReadUpstream {
-                    port,
-                    addr,
-                    reg,
-                    data: r.take(usize::from(n))?,
-                }
-            }
-            id::SONAR => {
-                let trig = r.pin("trig")?;
-                Report::Sonar(match dialect {
-                    Dialect::Mirte13 if r.remaining() == 3 => Sonar::WithEcho {
-                        trig,
-                        echo: r.pin("echo")?,
-                        cm: sonar_cm(r)?,
-                    },
-                    Dialect::Mirte13 => Sonar::TrigOnly {
-                        trig,
-                        cm: sonar_cm(r)?,
-                    },
-                    Dialect::Mirte12 => {
-                        let m = r.u8()?;
-                        let cm = r.u8()?;
-                        ensure(cm < 100, rid, "cm")?;
-                        Sonar::MetresCm { trig, m, cm }
-                    }
-                    Dialect::Upstream11 => {
-                        let cm = r.u8()?;
-                        let hundredths = r.u8()?;
-                        ensure(hundredths < 100, rid, "hundredths")?;
-                        Sonar::CmHundredths {
-                            trig,
-                            cm,
-                            hundredths,
-                        }
-                    }
-                })
-            }
-            id::DHT => {
-                let pin = r.pin("pin")?;
-                let humidity = r.u8()?;
-                let humidity_hundredths = r.u8()?;
-                ensure(humidity_hundredths < 100, rid, "humidity_hundredths")?;
-                let temp = r.i8()?;
-                let temp_hundredths = r.i8()?;
-                let same_sign = !(temp > 0 && temp_hundredths < 0 || temp < 0 && temp_hundredths > 0);
-                ensure(
-                    (-99..=99).contains(&temp_hundredths) && same_sign,
-                    rid,
-                    "temp_hundredths",
-                )?;
-                Report::Dht {
-                    pin,
-                    humidity,
-                    humidity_hundredths,
-                    temp,
-                    temp_hundredths,
-                }
-            }
-            id::ENCODER => {
-                let pin = r.pin("pin")?;
-                let steps = r.i8()?;
-                ensure(steps != 0, rid, "steps")?;
-                Report::Encoder { pin, steps }
-            }
-            id::SENSOR => {
-                let sensor_num = r.u8()?;
-                let sensor_type = SensorType::from_u8(r.u8()?).ok_or(Error::OutOfRange {
-                    id: rid,
-                    field: "sensor_type",
-                })?;
-                Report::Sensor {
-                    sensor_num,
-                    reading: SensorReading::parse(r, sensor_type, dialect)?,
-                }
-            }
-            id::SENSOR_MAIN => {
-                ensure(r.u8()? == 0, rid, "subtype")?;
-                Report::SensorSupported {
-                    sensor_type: r.u8()?,
-                    supported: r.flag("supported")?,
-                }
-            }
-            id::MODULE_MAIN => {
-                ensure(r.u8()? == 0, rid, "subtype")?;
-                Report::ModuleSupported {
-                    module_type: r.u8()?,
-                    supported: r.flag("supported")?,
-                }
-            }
-            id::MODULE => Report::Module {
-                module_num: r.u8()?,
-                report: ModuleReport::parse(r)?,
-            },
             _ => return Err(Error::UnknownId { id: rid }),
         }),
     )

@@ -19,6 +19,7 @@ use super::command::{
 use super::dialect::Dialect;
 use super::error::Error;
 use super::fields::{Visit, V, W};
+use super::kind::bind_hook;
 use super::list::List;
 use super::module::{
     HiwonderCommand, ModuleCommand, ModuleInit, ModuleNew, ModuleReport, ModuleType,
@@ -633,55 +634,42 @@ fn rgb(f: &mut Fields<'_>) -> Result<Rgb, String> {
 
 /// The members of a `plain` row's command, from the command table (a
 /// `custom` row's are read by [`read_command`]).
+/// The members of a command `kind` (one of [`Command::NAMES`]), from the
+/// command table: a `plain` row's by their kinds, a `custom` row's by its
+/// `read` code.
 macro_rules! command_reader {
     ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
         $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
-        /// Whether `kind` is a `plain` row's command.
-        fn is_plain(kind: &str) -> bool {
-            match kind {
-                $($name => row_is_plain!($codec),)*
-                _ => false,
-            }
-        }
-
-        /// The members of a `plain` row's command `kind`.
-        fn read_plain<'b>(
+        fn read_command<'b>(
             kind: &str,
             f: &mut Fields<'_>,
+            dialect: Dialect,
             buf: &'b mut Vec<u8>,
+            raw: &mut Raw,
         ) -> Result<Command<'b>, String> {
             Ok(match kind {
-                $($name => read_row!(f, buf, Command (return Err(CUSTOM_BY_HAND.into())), $codec $($p)? { $($body)* }),)*
+                $($name => read_row!(f, buf, Command (f, dialect, buf, raw), $codec $($p)? { $($body)* }),)*
                 other => return Err(format!("unknown type `{other}`")),
             })
         }
     };
 }
 
-/// What reading a `custom` row as `plain` gives: `read_plain` and
-/// `read_plain_report` are asked for `plain` rows only.
-const CUSTOM_BY_HAND: &str = "custom rows are read by hand";
-
-/// Whether a row is `plain`.
-macro_rules! row_is_plain {
-    (plain) => {
-        true
-    };
-    (custom) => {
-        false
-    };
-}
-
-/// Read a row's members as an `$enum`, or for a `custom` row evaluate
-/// `$custom` (a report row names its `plain` variant in brackets).
+/// Read a row's members as an `$enum`: a `plain` row's by their kinds (a
+/// report row names its variant in brackets), a `custom` row's by its
+/// `read` code, its parameters bound to the values in `$ctx`.
 macro_rules! read_row {
-    ($fields:ident, $buf:ident, $enum:ident ($custom:expr), $([$($vs:ident)+])? custom $($rest:tt)*) => {
-        $custom
+    ($fields:ident, $buf:ident, $enum:ident $ctx:tt, $([$($vs:ident)+])? custom {
+        variants $vars:tt parse $pp:tt $pb:tt write $wp:tt $wb:tt fields $fp:tt $fb:tt
+        read ($($param:ident),*) { $($body:tt)* }
+    }) => {{
+        bind_hook!(($($param),*) = $ctx);
+        $($body)*
+    }};
+    ($fields:ident, $buf:ident, $enum:ident $ctx:tt, [$p:ident] plain $body:tt) => {
+        read_row!($fields, $buf, $enum $ctx, plain $p $body)
     };
-    ($fields:ident, $buf:ident, $enum:ident ($custom:expr), [$p:ident] plain $body:tt) => {
-        read_row!($fields, $buf, $enum ($custom), plain $p $body)
-    };
-    ($fields:ident, $buf:ident, $enum:ident ($custom:expr),
+    ($fields:ident, $buf:ident, $enum:ident $ctx:tt,
         plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? }) => {
         $enum::$p { $($f: read_member!($fields, $buf, $key, $kind $(($($arg)*))?),)* }
     };
@@ -748,27 +736,23 @@ macro_rules! read_member {
 
 super::table::command_table!(command_reader);
 
-/// The members of a `plain` row's report, from the report table (a
-/// `custom` row's are read by [`read_report`]).
+/// The members of a report `kind` (one of [`Report::NAMES`]), from the
+/// report table as for commands, and an unknown report's.
 macro_rules! report_reader {
     ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
         { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
-        /// Whether `kind` is a `plain` row's report.
-        fn is_plain_report(kind: &str) -> bool {
-            match kind {
-                $($($name)|+ => row_is_plain!($codec),)*
-                _ => false,
-            }
-        }
-
-        /// The members of a `plain` row's report `kind`.
-        fn read_plain_report<'b>(
+        fn read_report<'b>(
             kind: &str,
             f: &mut Fields<'_>,
+            dialect: Dialect,
             buf: &'b mut Vec<u8>,
         ) -> Result<Report<'b>, String> {
             Ok(match kind {
-                $($($name)|+ => read_row!(f, buf, Report (return Err(CUSTOM_BY_HAND.into())), [$($($v)+)+] $codec { $($body)* }),)*
+                $($($name)|+ => read_row!(f, buf, Report (f, dialect, buf, kind), [$($($v)+)+] $codec { $($body)* }),)*
+                "unknown_report" => Report::Unknown {
+                    id: u8_(f, "id")?,
+                    payload: bytes_in(f, "payload", buf)?,
+                },
                 other => return Err(format!("unknown type `{other}`")),
             })
         }
@@ -777,146 +761,10 @@ macro_rules! report_reader {
 
 super::table::report_table!(report_reader);
 
-/// The members of a command `kind` (one of [`Command::NAMES`]).
-fn read_command<'b>(
-    kind: &str,
-    f: &mut Fields<'_>,
-    dialect: Dialect,
-    buf: &'b mut Vec<u8>,
-    raw: &mut Raw,
-) -> Result<Command<'b>, String> {
-    if is_plain(kind) {
-        return read_plain(kind, f, buf);
-    }
-    let upstream = dialect == Dialect::Upstream11;
-    Ok(match kind {
-        "set_pin_mode" => {
-            let mode = name(f, "mode", PinMode::NAMES)?;
-            let pin = if mode == 5 {
-                analog_pin(f, dialect)?
-            } else {
-                pin_(f, "pin")?
-            };
-            let mode = match mode {
-                m @ 0..=2 => PinMode::DigitalInput {
-                    pull: [Pull::None, Pull::Up, Pull::Down][m],
-                    report: flag(f, "report_enable")?,
-                },
-                3 => PinMode::DigitalOutput,
-                4 => PinMode::PwmOutput,
-                _ => PinMode::AnalogInput {
-                    differential: u16_(f, "differential")?,
-                    report: flag(f, "report_enable")?,
-                },
-            };
-            Command::SetPinMode { pin, mode }
-        }
-        "digital_write" => Command::DigitalWrite {
-            pin: pin_(f, "pin")?,
-            // The level byte as sent, which the firmware reads as high
-            // unless it is 0.
-            value: if raw.is(Quirk::LevelNotBinary) {
-                let level = u8_(f, "value")?;
-                raw.byte = Some((3, level));
-                level != 0
-            } else {
-                digital_value(f)?
-            },
-        },
-        "pwm_write" => {
-            if raw.is(Quirk::PwmTrailingBytes) {
-                raw.trailing = bytes(f, "trailing")?;
-            }
-            let pins = objects(f, "pins", |p| {
-                Ok(PwmPin {
-                    pin: pin_(p, "pin")?,
-                    value: u16_(p, "value")?,
-                })
-            })?;
-            Command::PwmWrite(
-                PwmPins::from_slice(&pins)
-                    .map_err(|_| format!("field `pins` holds {} pins, at most 9", pins.len()))?,
-            )
-        }
-        "modify_reporting" => {
-            let action = name(f, "action", ModifyReporting::NAMES)?;
-            Command::ModifyReporting(match action {
-                0 => ModifyReporting::DisableAll,
-                1 => ModifyReporting::EnableAnalog {
-                    pin: reporting_analog_pin(f, dialect, raw)?,
-                },
-                2 => ModifyReporting::EnableDigital {
-                    pin: pin_(f, "pin")?,
-                },
-                3 => ModifyReporting::DisableAnalog {
-                    pin: reporting_analog_pin(f, dialect, raw)?,
-                },
-                _ => ModifyReporting::DisableDigital {
-                    pin: pin_(f, "pin")?,
-                },
-            })
-        }
-        "i2c_read" if upstream => Command::I2cReadUpstream {
-            port: ranged(f, "port", 0, 1)?,
-            addr: ranged(f, "addr", 0, 0x7f)?,
-            reg: u8_(f, "reg")?,
-            len: ranged(f, "n", 1, 57)?,
-            no_stop: u8_(f, "no_stop")?,
-        },
-        "i2c_read" => Command::I2cRead {
-            port: ranged(f, "port", 0, 1)?,
-            addr: ranged(f, "addr", 0, 0x7f)?,
-            msg_id: u8_(f, "msg_id")?,
-            reg: u8_(f, "reg")?,
-            len: ranged(f, "n", 1, 57)?,
-            no_stop: u8_(f, "no_stop")?,
-        },
-        "i2c_write" if upstream => Command::I2cWriteUpstream {
-            port: ranged(f, "port", 0, 1)?,
-            addr: ranged(f, "addr", 0, 0x7f)?,
-            no_stop: u8_(f, "no_stop")?,
-            data: bytes_in(f, "data", buf)?,
-        },
-        "i2c_write" => Command::I2cWrite {
-            port: ranged(f, "port", 0, 1)?,
-            addr: ranged(f, "addr", 0, 0x7f)?,
-            msg_id: u8_(f, "msg_id")?,
-            no_stop: u8_(f, "no_stop")?,
-            data: bytes_in(f, "data", buf)?,
-        },
-        "encoder_new" => Command::EncoderNew {
-            kind: if raw.is(Quirk::EncoderTypeNot1Or2) {
-                // The type byte as sent, which the firmware reads as
-                // quadrature unless it is 1.
-                let kind = u8_(f, "kind")?;
-                raw.byte = Some((2, kind));
-                if kind == 1 {
-                    EncoderKind::Single
-                } else {
-                    EncoderKind::Quadrature
-                }
-            } else {
-                match name(f, "kind", EncoderKind::NAMES)? {
-                    0 => EncoderKind::Single,
-                    _ => EncoderKind::Quadrature,
-                }
-            },
-            pin_a: pin_(f, "pin_a")?,
-            pin_b: pin_(f, "pin_b")?,
-            // Only mirte 1.3 has the pulls byte; elsewhere `pulls` is an
-            // unknown field.
-            pulls: if dialect == Dialect::Mirte13 {
-                Some(nested(f, "pulls", |p| {
-                    Ok(Pulls {
-                        up: flag(p, "up")?,
-                        down: flag(p, "down")?,
-                    })
-                })?)
-            } else {
-                None
-            },
-        },
-        "sensor_new" => Command::SensorNew(match name(f, "subtype", &["check", "add"])? {
+impl SensorNew {
+    /// SENSOR_NEW's members (`subtype` and the subtype's fields).
+    fn read_members(f: &mut Fields<'_>, dialect: Dialect) -> Result<Self, String> {
+        Ok(match name(f, "subtype", &["check", "add"])? {
             0 => SensorNew::Check {
                 sensor_type: type_byte(f, "sensor_type", SensorType::NAMES)?,
             },
@@ -941,8 +789,15 @@ fn read_command<'b>(
                 sensor_type: sensor_type(f)?,
                 settings: f.array("settings", byte)?,
             },
-        }),
-        "module_new" => Command::ModuleNew(match name(f, "subtype", &["check", "add"])? {
+        })
+    }
+}
+
+impl<'b> ModuleNew<'b> {
+    /// MODULE_NEW's members (`subtype` and the subtype's fields); the init's
+    /// bytes are read into `buf`.
+    fn read_members(f: &mut Fields<'_>, buf: &'b mut Vec<u8>) -> Result<Self, String> {
+        Ok(match name(f, "subtype", &["check", "add"])? {
             0 => ModuleNew::Check {
                 module_type: type_byte(f, "module_type", ModuleType::NAMES)?,
             },
@@ -954,21 +809,8 @@ fn read_command<'b>(
                     init: nested(f, "init", move |i| module_init(module_type, i, buf))?,
                 }
             }
-        }),
-        "module_data" => {
-            let module_num = u8_(f, "module_num")?;
-            let data: &[u8] = if f.has("module_type") {
-                let module_type = module_type(f)?;
-                let data = nested(f, "message", |m| module_data(module_type, m))?;
-                *buf = data.to_vec();
-                &buf[..]
-            } else {
-                bytes_in(f, "data", buf)?
-            };
-            Command::ModuleData { module_num, data }
-        }
-        other => return Err(format!("unknown type `{other}`")),
-    })
+        })
+    }
 }
 
 fn module_init<'b>(
@@ -1056,7 +898,7 @@ macro_rules! module_data_reader {
                 // into; no module data row has one.
                 let _buf: &mut Vec<u8> = &mut Vec::new();
                 Ok(match subtype {
-                    $($name => read_row!(f, _buf, $enum ($enum::read_custom(subtype, f)?), $codec $($p)? { $($body)* }),)*
+                    $($name => read_row!(f, _buf, $enum (f), $codec $($p)? { $($body)* }),)*
                     other => return Err(format!("unknown subtype `{other}`")),
                 })
             }
@@ -1066,57 +908,6 @@ macro_rules! module_data_reader {
 
 super::table::hiwonder_table!(module_data_reader);
 super::table::ssd1306_table!(module_data_reader);
-
-impl HiwonderCommand {
-    /// The members of a `custom` row.
-    fn read_custom(subtype: &str, f: &mut Fields<'_>) -> Result<Self, String> {
-        Ok(match subtype {
-            "set_angle" => {
-                let moves = objects(f, "moves", |m| {
-                    Ok(ServoMove {
-                        idx: u8_(m, "idx")?,
-                        centideg: u16_(m, "centideg")?,
-                        time_ms: u16_(m, "time_ms")?,
-                    })
-                })?;
-                HiwonderCommand::SetAngle(
-                    List::from_slice(&moves)
-                        .map_err(|_| format!("`moves` holds {}, at most 5", moves.len()))?,
-                )
-            }
-            _ => {
-                let enabled = flag(f, "enabled")?;
-                let servos = bytes(f, "servos")?;
-                HiwonderCommand::Enable {
-                    enabled,
-                    servos: List::from_slice(&servos)
-                        .map_err(|_| format!("`servos` holds {}, at most 25", servos.len()))?,
-                }
-            }
-        })
-    }
-}
-
-impl Ssd1306Command {
-    /// The members of a `custom` row (TEXT).
-    fn read_custom(_subtype: &str, f: &mut Fields<'_>) -> Result<Self, String> {
-        let value = f.value("text")?;
-        let text = value
-            .as_str()
-            .ok_or_else(|| format!("field `text` must be a string, found {value}"))?;
-        // One character per byte (ISO 8859-1), as it is written.
-        let bytes = text
-            .chars()
-            .map(u8::try_from)
-            .collect::<Result<Vec<u8>, _>>()
-            .map_err(|_| {
-                format!("field `text` must hold characters U+0000..=U+00FF only, found {value}")
-            })?;
-        Ok(Ssd1306Command::Text(List::from_slice(&bytes).map_err(
-            |_| format!("field `text` holds {} bytes, at most 26", bytes.len()),
-        )?))
-    }
-}
 
 /// A mirte 1.3 sonar distance: centimetres, or a sentinel's name.
 fn sonar_cm(f: &mut Fields<'_>) -> Result<u16, String> {
@@ -1132,118 +923,6 @@ fn sonar_cm(f: &mut Fields<'_>) -> Result<u16, String> {
             )
         }),
     }
-}
-
-/// The members of a report `kind` (one of [`Report::NAMES`]).
-fn read_report<'b>(
-    kind: &str,
-    f: &mut Fields<'_>,
-    dialect: Dialect,
-    buf: &'b mut Vec<u8>,
-) -> Result<Report<'b>, String> {
-    if is_plain_report(kind) {
-        return read_plain_report(kind, f, buf);
-    }
-    let upstream = dialect == Dialect::Upstream11;
-    Ok(match kind {
-        "digital_report" => Report::Digital {
-            pin: pin_(f, "pin")?,
-            value: digital_value(f)?,
-        },
-        "analog_report" => Report::Analog {
-            pin: u8_(f, "pin")?,
-            value: f.int("value", 0, 4095)? as u16,
-        },
-        "i2c_write_report" => Report::I2cWrite {
-            port: ranged(f, "port", 0, 1)?,
-            msg_id: u8_(f, "msg_id")?,
-            result: i8_(f, "result")?,
-        },
-        "i2c_write_failed" => Report::I2cWriteFailed {
-            port: ranged(f, "port", 0, 1)?,
-            addr: ranged(f, "addr", 0, 0x7f)?,
-            stale: u8_(f, "stale")?,
-        },
-        "i2c_read_report" if upstream => Report::I2cReadUpstream {
-            port: ranged(f, "port", 0, 1)?,
-            addr: ranged(f, "addr", 0, 0x7f)?,
-            reg: u8_(f, "reg")?,
-            data: bytes_in(f, "data", buf)?,
-        },
-        "i2c_read_report" => Report::I2cRead {
-            port: ranged(f, "port", 0, 1)?,
-            msg_id: u8_(f, "msg_id")?,
-            reg: u8_(f, "reg")?,
-            data: bytes_in(f, "data", buf)?,
-        },
-        "sonar_distance" => Report::Sonar(match dialect {
-            Dialect::Mirte13 => {
-                let trig = pin_(f, "trig")?;
-                if f.has("echo") {
-                    Sonar::WithEcho {
-                        trig,
-                        echo: pin_(f, "echo")?,
-                        cm: sonar_cm(f)?,
-                    }
-                } else {
-                    Sonar::TrigOnly {
-                        trig,
-                        cm: sonar_cm(f)?,
-                    }
-                }
-            }
-            Dialect::Mirte12 => Sonar::MetresCm {
-                trig: pin_(f, "trig")?,
-                m: u8_(f, "m")?,
-                cm: u8_(f, "cm")?,
-            },
-            Dialect::Upstream11 => Sonar::CmHundredths {
-                trig: pin_(f, "trig")?,
-                cm: u8_(f, "cm")?,
-                hundredths: u8_(f, "hundredths")?,
-            },
-        }),
-        "dht_report" => Report::Dht {
-            pin: pin_(f, "pin")?,
-            humidity: u8_(f, "hum_int")?,
-            humidity_hundredths: u8_(f, "hum_hundredths")?,
-            temp: i8_(f, "temp_int")?,
-            temp_hundredths: i8_(f, "temp_hundredths")?,
-        },
-        "encoder_report" => Report::Encoder {
-            pin: pin_(f, "pin_a")?,
-            steps: i8_(f, "steps")?,
-        },
-        "sensor_report" => {
-            let sensor_num = u8_(f, "sensor_num")?;
-            let sensor_type = sensor_type(f)?;
-            Report::Sensor {
-                sensor_num,
-                reading: nested(f, "reading", |r| sensor_reading(sensor_type, r))?,
-            }
-        }
-        "sensor_main_report" => Report::SensorSupported {
-            sensor_type: type_byte(f, "sensor_type", SensorType::NAMES)?,
-            supported: flag(f, "supported")?,
-        },
-        "module_main_report" => Report::ModuleSupported {
-            module_type: type_byte(f, "module_type", ModuleType::NAMES)?,
-            supported: flag(f, "supported")?,
-        },
-        "module_report" => {
-            let module_num = u8_(f, "module_num")?;
-            let module_type = module_type(f)?;
-            Report::Module {
-                module_num,
-                report: nested(f, "message", move |m| module_report(module_type, m, buf))?,
-            }
-        }
-        "unknown_report" => Report::Unknown {
-            id: u8_(f, "id")?,
-            payload: bytes_in(f, "payload", buf)?,
-        },
-        other => return Err(format!("unknown type `{other}`")),
-    })
 }
 
 fn f32s<const N: usize>(f: &mut Fields<'_>, key: &str) -> Result<[f32; N], String> {

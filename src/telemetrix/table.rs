@@ -1,13 +1,39 @@
-//! The command table: every Telemetrix command (host → Pico) described once.
+//! The message tables: every Telemetrix message described once, in one
+//! place.
 //!
-//! Each row gives a command's id, the name of its id constant, its `type`
-//! name in the JSON-lines schema, the [`Command`](super::Command) variants
-//! that carry it, the dialects that define it, its `LEN` range (one pair, or
-//! a `match` on the dialect) and its payload: `plain { field: kind "key", … }`
-//! for a command whose fields are fixed bytes in wire order (its variant is
-//! built from them, with the row's docs), or `custom { variants }` for one
-//! whose layout depends on its content or dialect (its variants as written,
-//! and a hand-written arm in each consumer).
+//! Each row of the command table gives a command's id, the name of its id
+//! constant, its `type` name in the JSON-lines schema, the
+//! [`Command`](super::Command) variants that carry it, the dialects that
+//! define it, its `LEN` range (one pair, or a `match` on the dialect) and its
+//! payload: `plain { field: kind "key", … }` for a command whose fields are
+//! fixed bytes in wire order (its variant is built from them, with the row's
+//! docs), or `custom { … }` for one whose layout depends on its content or
+//! dialect. A `custom` row carries its variants and all of its code, each
+//! piece with the names it works on, as a closure names its parameters:
+//!
+//! ```text
+//! custom {
+//!     variants { /// docs
+//!                Variant { field: Type, … }, … }
+//!     parse(dialect, r, id) { /* the payload's reader → the message */ }
+//!     write(w) { Command::Variant { field, … } => { /* to the Writer */ } … }
+//!     fields(view, w) { Command::Variant { field, … } => { /* JSON fields */ } … }
+//!     read(f, dialect, buf, raw) { /* JSON members → the message */ }
+//! }
+//! ```
+//!
+//! `parse` is an arm of the one parser `match` (`r` the payload's
+//! [`Reader`](super::wire::Reader), `id` the message id, `?` and
+//! `return Err` as in the parser); `write` and `fields` are arms of a `match`
+//! on the message (by value: every payload type is `Copy`), `w` the payload
+//! `Writer` or the field visitor `W` and `view` the `CommandView` (what a
+//! capture told about the command); `read` builds the message from the JSON
+//! object `f` (`buf` owns a byte list it borrows, `raw` the wire bytes a
+//! quirk line gives). A report row's `write` also sees the `dialect` and its
+//! `read` the `kind` (the row's `type` name read). Each piece expands where
+//! its consumer's helpers are in scope (`command.rs`, `report.rs`,
+//! `fields.rs`, `schema.rs`); the payload types a row names (`PinMode`,
+//! `SensorNew`, `ModuleReport`, …) are in the files of their own.
 //!
 //! A field kind says how the field is read, checked, written and named:
 //!
@@ -37,15 +63,16 @@
 //! macro: each consumer (the id constants in `wire`, the enum, parser and
 //! writer in `command`, the fields in `fields`, the names in `names`, the
 //! serde reader in `schema`) expands the rows where its private helpers are
-//! in scope. The parser's consumer is a muncher that takes the hand-written
-//! `custom` arms too, so that all arms are one `match`: split in two
-//! functions the Pico's command decoder linked 9,096 B instead of 7,736 B
-//! (`python3 size/report.py`). A
+//! in scope. The parser's consumer is a muncher that gives every row one
+//! arm of one `match`: split in two functions the Pico's command decoder
+//! linked 9,096 B instead of 7,736 B (`python3 size/report.py`). A
 //! `macro_rules!` table rather than a generator: it needs no build script, no
 //! checked-in output to keep current and no extra CI step, and the rows are
 //! read by the compiler itself, so a typo is a compile error at the row.
-//! The wire layouts stay checked against the protocol spec by the tests
-//! (golden vectors in `tests/telemetrix.rs`), not by the table.
+//! What it costs: `rustfmt` does not format the code inside a macro's
+//! definition, so a `custom` row's code is formatted by hand. The wire
+//! layouts stay checked against the protocol spec by the tests (golden
+//! vectors in `tests/telemetrix.rs`), not by the table.
 //!
 //! The module data tables (`hiwonder_table`, `ssd1306_table`) describe the
 //! MODULE_DATA messages of a module type that starts with a subtype byte
@@ -54,7 +81,7 @@
 
 /// Hand the command rows to `$callback!`, after `$extra` (in brackets) when
 /// given: a consumer that expands in expression position takes its
-/// call-site names and hand-written arms there.
+/// call-site names and its last arms there.
 macro_rules! command_table {
     ($callback:ident $(, $($extra:tt)+)?) => {
         $callback! {
@@ -67,36 +94,260 @@ macro_rules! command_table {
                 };
             1 SET_PIN_MODE "set_pin_mode" [SetPinMode] in [Mirte13, Mirte12, Upstream11] len (3, 6)
                 custom {
-                    /// 1 SET_PIN_MODE.
-                    SetPinMode {
-                        /// GPIO number (< 30), or the analog pin for [`PinMode::AnalogInput`].
-                        pin: u8,
-                        /// Mode and tail.
-                        mode: PinMode,
-                    },
+                    variants {
+                        /// 1 SET_PIN_MODE.
+                        SetPinMode {
+                            /// GPIO number (< 30), or the analog pin for [`PinMode::AnalogInput`].
+                            pin: u8,
+                            /// Mode and tail.
+                            mode: PinMode,
+                        },
+                    }
+                    parse(dialect, r, cmd) {
+                        let pin = r.u8()?;
+                        let mode = match r.u8()? {
+                            m @ (0 | 3 | 4) => PinMode::DigitalInput {
+                                pull: match m {
+                                    3 => Pull::Up,
+                                    4 => Pull::Down,
+                                    _ => Pull::None,
+                                },
+                                report: r.flag("report_enable")?,
+                            },
+                            1 => PinMode::DigitalOutput,
+                            2 => PinMode::PwmOutput,
+                            5 => PinMode::AnalogInput {
+                                differential: r.u16()?,
+                                report: r.flag("report_enable")?,
+                            },
+                            _ => return Err(Error::OutOfRange { id: cmd, field: "mode" }),
+                        };
+                        let pin_ok = match mode {
+                            PinMode::AnalogInput { .. } => analog_pin_ok(dialect, pin),
+                            _ => pin < PIN_COUNT,
+                        };
+                        ensure(pin_ok, cmd, "pin")?;
+                        Command::SetPinMode { pin, mode }
+                    }
+                    write(w) {
+                        Command::SetPinMode { pin, mode } => {
+                            w.u8(pin);
+                            match mode {
+                                PinMode::DigitalInput { pull, report } => {
+                                    w.u8(match pull {
+                                        Pull::None => 0,
+                                        Pull::Up => 3,
+                                        Pull::Down => 4,
+                                    });
+                                    w.flag(report);
+                                }
+                                PinMode::DigitalOutput => w.u8(1),
+                                PinMode::PwmOutput => w.u8(2),
+                                PinMode::AnalogInput { differential, report } => {
+                                    w.u8(5);
+                                    w.u16(differential);
+                                    w.flag(report);
+                                }
+                            }
+                        }
+                    }
+                    fields(view, w) {
+                        Command::SetPinMode { pin, mode } => {
+                            w.u("pin", pin);
+                            w.s("mode", mode.name());
+                            match mode {
+                                PinMode::DigitalInput { report, .. } => w.flag("report_enable", report),
+                                PinMode::AnalogInput { differential, report } => {
+                                    w.u("differential", differential);
+                                    w.flag("report_enable", report);
+                                }
+                                PinMode::DigitalOutput | PinMode::PwmOutput => {}
+                            }
+                        }
+                    }
+                    read(f, dialect, buf, raw) {
+                        let mode = name(f, "mode", PinMode::NAMES)?;
+                        let pin = if mode == 5 {
+                            analog_pin(f, dialect)?
+                        } else {
+                            pin_(f, "pin")?
+                        };
+                        let mode = match mode {
+                            m @ 0..=2 => PinMode::DigitalInput {
+                                pull: [Pull::None, Pull::Up, Pull::Down][m],
+                                report: flag(f, "report_enable")?,
+                            },
+                            3 => PinMode::DigitalOutput,
+                            4 => PinMode::PwmOutput,
+                            _ => PinMode::AnalogInput {
+                                differential: u16_(f, "differential")?,
+                                report: flag(f, "report_enable")?,
+                            },
+                        };
+                        Command::SetPinMode { pin, mode }
+                    }
                 };
             2 DIGITAL_WRITE "digital_write" [DigitalWrite] in [Mirte13, Mirte12, Upstream11] len (3, 3)
                 custom {
-                    /// 2 DIGITAL_WRITE.
-                    DigitalWrite {
-                        /// GPIO number (< 30).
-                        pin: u8,
-                        /// Level, `true` for high: `1` on the wire, in JSON and in `Display`
-                        /// (see [levels and flags](super#levels-and-flags)).
-                        value: bool,
-                    },
+                    variants {
+                        /// 2 DIGITAL_WRITE.
+                        DigitalWrite {
+                            /// GPIO number (< 30).
+                            pin: u8,
+                            /// Level, `true` for high: `1` on the wire, in JSON and in `Display`
+                            /// (see [levels and flags](super#levels-and-flags)).
+                            value: bool,
+                        },
+                    }
+                    // The firmware drives any non-zero level high (flagged as a quirk).
+                    parse(dialect, r, cmd) {
+                        Command::DigitalWrite {
+                            pin: r.pin("pin")?,
+                            value: r.u8()? != 0,
+                        }
+                    }
+                    write(w) {
+                        Command::DigitalWrite { pin, value } => {
+                            w.u8(pin);
+                            w.flag(value);
+                        }
+                    }
+                    fields(view, w) {
+                        Command::DigitalWrite { pin, value } => {
+                            w.u("pin", pin);
+                            w.level("value", value);
+                        }
+                    }
+                    read(f, dialect, buf, raw) {
+                        Command::DigitalWrite {
+                            pin: pin_(f, "pin")?,
+                            // The level byte as sent, which the firmware reads as high
+                            // unless it is 0.
+                            value: if raw.is(Quirk::LevelNotBinary) {
+                                let level = u8_(f, "value")?;
+                                raw.byte = Some((3, level));
+                                level != 0
+                            } else {
+                                digital_value(f)?
+                            },
+                        }
+                    }
                 };
             // Up to 9 pins and, as a real host may send, 1 or 2 trailing
             // bytes that the firmware ignores (it takes (LEN - 1) / 3 pins).
             3 PWM_WRITE "pwm_write" [PwmWrite] in [Mirte13, Mirte12, Upstream11] len { Dialect::Mirte13 => (4, 30), _ => (4, 4) }
                 custom {
-                    /// 3 PWM_WRITE (k pins at once in mirte 1.3).
-                    PwmWrite(PwmPins),
+                    variants {
+                        /// 3 PWM_WRITE (k pins at once in mirte 1.3).
+                        PwmWrite(PwmPins),
+                    }
+                    parse(dialect, r, cmd) {
+                        let mut pins = PwmPins::new();
+                        // Whole triples; 1 or 2 trailing bytes (mirte 1.3's LEN range
+                        // allows them) are ignored as the firmware ignores them, and
+                        // flagged as a quirk.
+                        while r.remaining() >= 3 {
+                            let pin = PwmPin {
+                                pin: r.pin("pin")?,
+                                value: r.u16()?,
+                            };
+                            pins.push(pin).map_err(|_| r.bad_length())?;
+                        }
+                        r.rest();
+                        Command::PwmWrite(pins)
+                    }
+                    write(w) {
+                        Command::PwmWrite(pins) => {
+                            for p in &pins {
+                                w.u8(p.pin);
+                                w.u16(p.value);
+                            }
+                        }
+                    }
+                    fields(view, w) {
+                        Command::PwmWrite(pins) => w.objs("pins", &pins),
+                    }
+                    read(f, dialect, buf, raw) {
+                        if raw.is(Quirk::PwmTrailingBytes) {
+                            raw.trailing = bytes(f, "trailing")?;
+                        }
+                        let pins = objects(f, "pins", |p| {
+                            Ok(PwmPin {
+                                pin: pin_(p, "pin")?,
+                                value: u16_(p, "value")?,
+                            })
+                        })?;
+                        Command::PwmWrite(
+                            PwmPins::from_slice(&pins)
+                                .map_err(|_| format!("field `pins` holds {} pins, at most 9", pins.len()))?,
+                        )
+                    }
                 };
             4 MODIFY_REPORTING "modify_reporting" [ModifyReporting] in [Mirte13, Mirte12, Upstream11] len (3, 3)
                 custom {
-                    /// 4 MODIFY_REPORTING.
-                    ModifyReporting(ModifyReporting),
+                    variants {
+                        /// 4 MODIFY_REPORTING.
+                        ModifyReporting(ModifyReporting),
+                    }
+                    parse(dialect, r, cmd) {
+                        let kind = r.u8()?;
+                        let pin = r.u8()?;
+                        // Digital pins in mirte 1.3 are what a real host sends, although
+                        // the firmware indexes them as pin - 26: accepted, and flagged as
+                        // a quirk.
+                        let digital_ok = pin < PIN_COUNT;
+                        // Mirte 1.2's and upstream 1.1's clients send an analog pin's
+                        // GPIO number (26..=30) unchecked where their firmware takes an
+                        // ADC number: accepted as sent, and flagged as a quirk.
+                        let analog_ok = analog_pin_ok(Dialect::Mirte13, pin) || analog_pin_ok(dialect, pin);
+                        Command::ModifyReporting(match kind {
+                            0 if pin == 0 => ModifyReporting::DisableAll,
+                            1 if analog_ok => ModifyReporting::EnableAnalog { pin },
+                            3 if analog_ok => ModifyReporting::DisableAnalog { pin },
+                            2 if digital_ok => ModifyReporting::EnableDigital { pin },
+                            4 if digital_ok => ModifyReporting::DisableDigital { pin },
+                            0..=4 => return Err(Error::OutOfRange { id: cmd, field: "pin" }),
+                            _ => return Err(Error::OutOfRange { id: cmd, field: "type" }),
+                        })
+                    }
+                    write(w) {
+                        Command::ModifyReporting(m) => {
+                            let (kind, pin) = match m {
+                                ModifyReporting::DisableAll => (0, 0),
+                                ModifyReporting::EnableAnalog { pin } => (1, pin),
+                                ModifyReporting::EnableDigital { pin } => (2, pin),
+                                ModifyReporting::DisableAnalog { pin } => (3, pin),
+                                ModifyReporting::DisableDigital { pin } => (4, pin),
+                            };
+                            w.u8(kind);
+                            w.u8(pin);
+                        }
+                    }
+                    fields(view, w) {
+                        Command::ModifyReporting(action) => {
+                            w.s("action", action.name());
+                            match action {
+                                ModifyReporting::DisableAll => {}
+                                ModifyReporting::EnableAnalog { pin }
+                                | ModifyReporting::EnableDigital { pin }
+                                | ModifyReporting::DisableAnalog { pin }
+                                | ModifyReporting::DisableDigital { pin } => w.u("pin", pin),
+                            }
+                        }
+                    }
+                    read(f, dialect, buf, raw) {
+                        Command::ModifyReporting(match name(f, "action", ModifyReporting::NAMES)? {
+                            0 => ModifyReporting::DisableAll,
+                            1 => ModifyReporting::EnableAnalog {
+                                pin: reporting_analog_pin(f, dialect, raw)?,
+                            },
+                            2 => ModifyReporting::EnableDigital { pin: pin_(f, "pin")? },
+                            3 => ModifyReporting::DisableAnalog {
+                                pin: reporting_analog_pin(f, dialect, raw)?,
+                            },
+                            _ => ModifyReporting::DisableDigital { pin: pin_(f, "pin")? },
+                        })
+                    }
                 };
             /// 5 GET_FIRMWARE_VERSION: answered by report 5.
             5 GET_FIRMWARE_VERSION "get_firmware_version" [GetFirmwareVersion] in [Mirte13, Mirte12, Upstream11] len (1, 1)
@@ -138,62 +389,187 @@ macro_rules! command_table {
                 };
             11 I2C_READ "i2c_read" [I2cRead, I2cReadUpstream] in [Mirte13, Mirte12, Upstream11] len { Dialect::Upstream11 => (6, 6), _ => (7, 7) }
                 custom {
-                    /// 11 I2C_READ, mirte layout: answered by report 10 or 9, or not at all
-                    /// when the register write fails.
-                    I2cRead {
-                        /// 0 or 1.
-                        port: u8,
-                        /// 7-bit address.
-                        addr: u8,
-                        /// Echoed in the reply.
-                        msg_id: u8,
-                        /// Register written before the read.
-                        reg: u8,
-                        /// Bytes to read, 1..=57.
-                        len: u8,
-                        /// 0 (stop), 1 (no stop), or 254 (skip the register write, no stop).
-                        no_stop: u8,
-                    },
-                    /// 11 I2C_READ, upstream layout (no `msg_id`).
-                    I2cReadUpstream {
-                        /// 0 or 1.
-                        port: u8,
-                        /// 7-bit address.
-                        addr: u8,
-                        /// Register written before the read.
-                        reg: u8,
-                        /// Bytes to read, 1..=57.
-                        len: u8,
-                        /// 0 or 1.
-                        no_stop: u8,
-                    },
+                    variants {
+                        /// 11 I2C_READ, mirte layout: answered by report 10 or 9, or not at all
+                        /// when the register write fails.
+                        I2cRead {
+                            /// 0 or 1.
+                            port: u8,
+                            /// 7-bit address.
+                            addr: u8,
+                            /// Echoed in the reply.
+                            msg_id: u8,
+                            /// Register written before the read.
+                            reg: u8,
+                            /// Bytes to read, 1..=57.
+                            len: u8,
+                            /// 0 (stop), 1 (no stop), or 254 (skip the register write, no stop).
+                            no_stop: u8,
+                        },
+                        /// 11 I2C_READ, upstream layout (no `msg_id`).
+                        I2cReadUpstream {
+                            /// 0 or 1.
+                            port: u8,
+                            /// 7-bit address.
+                            addr: u8,
+                            /// Register written before the read.
+                            reg: u8,
+                            /// Bytes to read, 1..=57.
+                            len: u8,
+                            /// 0 or 1.
+                            no_stop: u8,
+                        },
+                    }
+                    parse(dialect, r, cmd) {
+                        let (port, addr) = (port(r)?, i2c_addr(r)?);
+                        if dialect.is_mirte() {
+                            let (msg_id, reg) = (r.u8()?, r.u8()?);
+                            let len = r.u8()?;
+                            ensure((1..=57).contains(&len), cmd, "len")?;
+                            let no_stop = r.u8()?;
+                            ensure(matches!(no_stop, 0 | 1 | 254), cmd, "no_stop")?;
+                            Command::I2cRead { port, addr, msg_id, reg, len, no_stop }
+                        } else {
+                            let reg = r.u8()?;
+                            let len = r.u8()?;
+                            ensure((1..=57).contains(&len), cmd, "len")?;
+                            let no_stop = r.u8()?;
+                            ensure(no_stop <= 1, cmd, "no_stop")?;
+                            Command::I2cReadUpstream { port, addr, reg, len, no_stop }
+                        }
+                    }
+                    write(w) {
+                        Command::I2cRead { port, addr, msg_id, reg, len, no_stop } => {
+                            w.bytes(&[port, addr, msg_id, reg, len, no_stop])
+                        }
+                        Command::I2cReadUpstream { port, addr, reg, len, no_stop } => {
+                            w.bytes(&[port, addr, reg, len, no_stop])
+                        }
+                    }
+                    fields(view, w) {
+                        Command::I2cRead { port, addr, msg_id, reg, len, no_stop } => {
+                            w.u("port", port);
+                            w.u("addr", addr);
+                            w.u("msg_id", msg_id);
+                            w.u("reg", reg);
+                            w.u("n", len);
+                            w.u("no_stop", no_stop);
+                        }
+                        Command::I2cReadUpstream { port, addr, reg, len, no_stop } => {
+                            w.u("port", port);
+                            w.u("addr", addr);
+                            w.u("reg", reg);
+                            w.u("n", len);
+                            w.u("no_stop", no_stop);
+                        }
+                    }
+                    read(f, dialect, buf, raw) {
+                        let (port, addr) = (ranged(f, "port", 0, 1)?, ranged(f, "addr", 0, 0x7f)?);
+                        if dialect == Dialect::Upstream11 {
+                            Command::I2cReadUpstream {
+                                port,
+                                addr,
+                                reg: u8_(f, "reg")?,
+                                len: ranged(f, "n", 1, 57)?,
+                                no_stop: u8_(f, "no_stop")?,
+                            }
+                        } else {
+                            Command::I2cRead {
+                                port,
+                                addr,
+                                msg_id: u8_(f, "msg_id")?,
+                                reg: u8_(f, "reg")?,
+                                len: ranged(f, "n", 1, 57)?,
+                                no_stop: u8_(f, "no_stop")?,
+                            }
+                        }
+                    }
                 };
             12 I2C_WRITE "i2c_write" [I2cWrite, I2cWriteUpstream] in [Mirte13, Mirte12, Upstream11] len { Dialect::Upstream11 => (6, 30), _ => (7, 30) }
                 custom {
-                    /// 12 I2C_WRITE, mirte layout: answered by report 8.
-                    I2cWrite {
-                        /// 0 or 1.
-                        port: u8,
-                        /// 7-bit address.
-                        addr: u8,
-                        /// Echoed in the reply.
-                        msg_id: u8,
-                        /// 0 or 1.
-                        no_stop: u8,
-                        /// 1..=24 bytes.
-                        data: &'a [u8],
-                    },
-                    /// 12 I2C_WRITE, upstream layout (no `msg_id`).
-                    I2cWriteUpstream {
-                        /// 0 or 1.
-                        port: u8,
-                        /// 7-bit address.
-                        addr: u8,
-                        /// 0 or 1.
-                        no_stop: u8,
-                        /// 1..=25 bytes.
-                        data: &'a [u8],
-                    },
+                    variants {
+                        /// 12 I2C_WRITE, mirte layout: answered by report 8.
+                        I2cWrite {
+                            /// 0 or 1.
+                            port: u8,
+                            /// 7-bit address.
+                            addr: u8,
+                            /// Echoed in the reply.
+                            msg_id: u8,
+                            /// 0 or 1.
+                            no_stop: u8,
+                            /// 1..=24 bytes.
+                            data: &'a [u8],
+                        },
+                        /// 12 I2C_WRITE, upstream layout (no `msg_id`).
+                        I2cWriteUpstream {
+                            /// 0 or 1.
+                            port: u8,
+                            /// 7-bit address.
+                            addr: u8,
+                            /// 0 or 1.
+                            no_stop: u8,
+                            /// 1..=25 bytes.
+                            data: &'a [u8],
+                        },
+                    }
+                    parse(dialect, r, cmd) {
+                        let (port, addr) = (port(r)?, i2c_addr(r)?);
+                        let msg_id = if dialect.is_mirte() { Some(r.u8()?) } else { None };
+                        let n = r.u8()?;
+                        ensure(n >= 1, cmd, "len")?;
+                        let no_stop = r.u8()?;
+                        ensure(no_stop <= 1, cmd, "no_stop")?;
+                        let data = r.take(usize::from(n))?;
+                        match msg_id {
+                            Some(msg_id) => Command::I2cWrite { port, addr, msg_id, no_stop, data },
+                            None => Command::I2cWriteUpstream { port, addr, no_stop, data },
+                        }
+                    }
+                    write(w) {
+                        Command::I2cWrite { port, addr, msg_id, no_stop, data } => {
+                            w.bytes(&[port, addr, msg_id, data.len() as u8, no_stop]);
+                            w.bytes(data);
+                        }
+                        Command::I2cWriteUpstream { port, addr, no_stop, data } => {
+                            w.bytes(&[port, addr, data.len() as u8, no_stop]);
+                            w.bytes(data);
+                        }
+                    }
+                    fields(view, w) {
+                        Command::I2cWrite { port, addr, msg_id, no_stop, data } => {
+                            w.u("port", port);
+                            w.u("addr", addr);
+                            w.u("msg_id", msg_id);
+                            w.u("no_stop", no_stop);
+                            w.bytes("data", data);
+                        }
+                        Command::I2cWriteUpstream { port, addr, no_stop, data } => {
+                            w.u("port", port);
+                            w.u("addr", addr);
+                            w.u("no_stop", no_stop);
+                            w.bytes("data", data);
+                        }
+                    }
+                    read(f, dialect, buf, raw) {
+                        let (port, addr) = (ranged(f, "port", 0, 1)?, ranged(f, "addr", 0, 0x7f)?);
+                        if dialect == Dialect::Upstream11 {
+                            Command::I2cWriteUpstream {
+                                port,
+                                addr,
+                                no_stop: u8_(f, "no_stop")?,
+                                data: bytes_in(f, "data", buf)?,
+                            }
+                        } else {
+                            Command::I2cWrite {
+                                port,
+                                addr,
+                                msg_id: u8_(f, "msg_id")?,
+                                no_stop: u8_(f, "no_stop")?,
+                                data: bytes_in(f, "data", buf)?,
+                            }
+                        }
+                    }
                 };
             /// 13 SONAR_NEW (`trig == echo`: single-pin sonar). At most 4 are used.
             13 SONAR_NEW "sonar_new" [SonarNew] in [Mirte13, Mirte12, Upstream11] len (3, 3)
@@ -321,24 +697,117 @@ macro_rules! command_table {
                 };
             30 ENCODER_NEW "encoder_new" [EncoderNew] in [Mirte13, Mirte12] len { Dialect::Mirte12 => (4, 4), _ => (5, 5) }
                 custom {
-                    /// 30 ENCODER_NEW (mirte only). At most 4 are used.
-                    EncoderNew {
-                        /// Single or quadrature.
-                        kind: EncoderKind,
-                        /// GPIO A (< 30).
-                        pin_a: u8,
-                        /// GPIO B (< 30); 0 for [`EncoderKind::Single`].
-                        pin_b: u8,
-                        /// Pull resistors: present in mirte 1.3, whose frame carries the
-                        /// byte; `None` in mirte 1.2, whose frame does not.
-                        pulls: Option<Pulls>,
-                    },
+                    variants {
+                        /// 30 ENCODER_NEW (mirte only). At most 4 are used.
+                        EncoderNew {
+                            /// Single or quadrature.
+                            kind: EncoderKind,
+                            /// GPIO A (< 30).
+                            pin_a: u8,
+                            /// GPIO B (< 30); 0 for [`EncoderKind::Single`].
+                            pin_b: u8,
+                            /// Pull resistors: present in mirte 1.3, whose frame carries the
+                            /// byte; `None` in mirte 1.2, whose frame does not.
+                            pulls: Option<Pulls>,
+                        },
+                    }
+                    // The firmware sets up a quadrature encoder for any type but 1;
+                    // type 3 is accepted as that, and flagged as a quirk.
+                    parse(dialect, r, cmd) {
+                        let kind = match r.u8()? {
+                            1 => EncoderKind::Single,
+                            2 | 3 => EncoderKind::Quadrature,
+                            _ => return Err(Error::OutOfRange { id: cmd, field: "type" }),
+                        };
+                        let pin_a = r.pin("pin_a")?;
+                        let pin_b = r.pin("pin_b")?;
+                        ensure(kind == EncoderKind::Quadrature || pin_b == 0, cmd, "pin_b")?;
+                        let pulls = if dialect == Dialect::Mirte13 {
+                            let bits = r.u8()?;
+                            ensure(bits <= 3, cmd, "pulls")?;
+                            Some(Pulls { up: bits & 1 != 0, down: bits & 2 != 0 })
+                        } else {
+                            None
+                        };
+                        Command::EncoderNew { kind, pin_a, pin_b, pulls }
+                    }
+                    write(w) {
+                        Command::EncoderNew { kind, pin_a, pin_b, pulls } => {
+                            w.u8(match kind {
+                                EncoderKind::Single => 1,
+                                EncoderKind::Quadrature => 2,
+                            });
+                            w.bytes(&[pin_a, pin_b]);
+                            if let Some(pulls) = pulls {
+                                w.u8(u8::from(pulls.up) | (u8::from(pulls.down) << 1));
+                            }
+                        }
+                    }
+                    fields(view, w) {
+                        Command::EncoderNew { kind, pin_a, pin_b, pulls } => {
+                            w.s("kind", kind.name());
+                            w.u("pin_a", pin_a);
+                            w.u("pin_b", pin_b);
+                            // Only mirte 1.3 sends the pulls byte.
+                            if let Some(pulls) = pulls {
+                                w.obj("pulls", &FnVisit(|o: &mut W<'_>| {
+                                    o.flag("up", pulls.up);
+                                    o.flag("down", pulls.down);
+                                }));
+                            }
+                        }
+                    }
+                    read(f, dialect, buf, raw) {
+                        Command::EncoderNew {
+                            kind: if raw.is(Quirk::EncoderTypeNot1Or2) {
+                                // The type byte as sent, which the firmware reads as
+                                // quadrature unless it is 1.
+                                let kind = u8_(f, "kind")?;
+                                raw.byte = Some((2, kind));
+                                if kind == 1 {
+                                    EncoderKind::Single
+                                } else {
+                                    EncoderKind::Quadrature
+                                }
+                            } else {
+                                match name(f, "kind", EncoderKind::NAMES)? {
+                                    0 => EncoderKind::Single,
+                                    _ => EncoderKind::Quadrature,
+                                }
+                            },
+                            pin_a: pin_(f, "pin_a")?,
+                            pin_b: pin_(f, "pin_b")?,
+                            // Only mirte 1.3 has the pulls byte; elsewhere `pulls` is an
+                            // unknown field.
+                            pulls: if dialect == Dialect::Mirte13 {
+                                Some(nested(f, "pulls", |p| {
+                                    Ok(Pulls { up: flag(p, "up")?, down: flag(p, "down")? })
+                                })?)
+                            } else {
+                                None
+                            },
+                        }
+                    }
                 };
             31 SENSOR_NEW "sensor_new" [SensorNew] in [Mirte13, Mirte12] len { Dialect::Mirte12 => (3, 9), _ => (3, 10) }
                 custom {
-                    /// 31 SENSOR_NEW (mirte 1.3, and mirte 1.2's own layout
-                    /// [`SensorNew::AddMirte12`]).
-                    SensorNew(SensorNew),
+                    variants {
+                        /// 31 SENSOR_NEW (mirte 1.3, and mirte 1.2's own layout
+                        /// [`SensorNew::AddMirte12`]).
+                        SensorNew(SensorNew),
+                    }
+                    parse(dialect, r, cmd) {
+                        Command::SensorNew(SensorNew::parse(r, dialect)?)
+                    }
+                    write(w) {
+                        Command::SensorNew(s) => s.write(w),
+                    }
+                    fields(view, w) {
+                        Command::SensorNew(s) => s.visit(w),
+                    }
+                    read(f, dialect, buf, raw) {
+                        Command::SensorNew(SensorNew::read_members(f, dialect)?)
+                    }
                 };
             /// 32 PING (mirte only): answered by report 32.
             32 PING "ping" [Ping] in [Mirte13, Mirte12] len (2, 2)
@@ -348,19 +817,71 @@ macro_rules! command_table {
                 };
             33 MODULE_NEW "module_new" [ModuleNew] in [Mirte13] len (3, 30)
                 custom {
-                    /// 33 MODULE_NEW (mirte 1.3).
-                    ModuleNew(ModuleNew<'a>),
+                    variants {
+                        /// 33 MODULE_NEW (mirte 1.3).
+                        ModuleNew(ModuleNew<'a>),
+                    }
+                    parse(dialect, r, cmd) {
+                        Command::ModuleNew(ModuleNew::parse(r)?)
+                    }
+                    write(w) {
+                        Command::ModuleNew(m) => m.write(w),
+                    }
+                    fields(view, w) {
+                        Command::ModuleNew(m) => m.visit(w),
+                    }
+                    read(f, dialect, buf, raw) {
+                        Command::ModuleNew(ModuleNew::read_members(f, buf)?)
+                    }
                 };
             34 MODULE_DATA "module_data" [ModuleData] in [Mirte13] len (2, 30)
                 custom {
-                    /// 34 MODULE_DATA (mirte 1.3): build typed data with
-                    /// [`Command::module_data`], read it with the module's `parse`.
-                    ModuleData {
-                        /// Module number (modules are numbered 0, 1, 2, … in creation order).
-                        module_num: u8,
-                        /// 1..=28 bytes for the module.
-                        data: &'a [u8],
-                    },
+                    variants {
+                        /// 34 MODULE_DATA (mirte 1.3): build typed data with
+                        /// [`Command::module_data`], read it with the module's `parse`.
+                        ModuleData {
+                            /// Module number (modules are numbered 0, 1, 2, … in creation order).
+                            module_num: u8,
+                            /// 1..=28 bytes for the module.
+                            data: &'a [u8],
+                        },
+                    }
+                    parse(dialect, r, cmd) {
+                        let module_num = r.u8()?;
+                        let data = r.rest();
+                        ensure(!data.is_empty(), cmd, "data")?;
+                        Command::ModuleData { module_num, data }
+                    }
+                    write(w) {
+                        Command::ModuleData { module_num, data } => {
+                            w.u8(module_num);
+                            w.bytes(data);
+                        }
+                    }
+                    fields(view, w) {
+                        Command::ModuleData { module_num, data } => {
+                            w.u("module_num", module_num);
+                            match view.module_type.and_then(|t| ModuleData::parse(t, data).map(|m| (t, m))) {
+                                Some((module_type, message)) => {
+                                    w.s("module_type", module_type.name());
+                                    w.obj("message", &message);
+                                }
+                                None => w.bytes("data", data),
+                            }
+                        }
+                    }
+                    read(f, dialect, buf, raw) {
+                        let module_num = u8_(f, "module_num")?;
+                        let data: &[u8] = if f.has("module_type") {
+                            let module_type = module_type(f)?;
+                            let data = nested(f, "message", |m| module_data(module_type, m))?;
+                            *buf = data.to_vec();
+                            &buf[..]
+                        } else {
+                            bytes_in(f, "data", buf)?
+                        };
+                        Command::ModuleData { module_num, data }
+                    }
                 };
             /// 35 GET_ID (mirte 1.3): answered by report 35.
             35 GET_ID "get_id" [GetId] in [Mirte13] len (1, 1)
@@ -394,9 +915,11 @@ pub(crate) use command_table;
 /// its `type` names with the [`Report`](super::Report) variants each names
 /// (report 8 has one per dialect family), and its payload, as in the
 /// command table: `plain { field: kind "key", … }` (one variant, named by
-/// the row, with the row's docs) or `custom { variants }` (a hand-written
-/// arm in each consumer). A report's `LEN` check is `report_len_ok`, which
-/// looks at a frame's first bytes to end a streamed frame early.
+/// the row, with the row's docs) or `custom { … }` (its variants and code:
+/// `parse(dialect, r, id)`, `write(w, dialect)`, `fields(view, w)`,
+/// `read(f, dialect, buf, kind)`). A report's `LEN` check is
+/// `report_len_ok`, which looks at a frame's first bytes to end a streamed
+/// frame early.
 macro_rules! report_table {
     ($callback:ident $(, $($extra:tt)+)?) => {
         $callback! {
@@ -410,26 +933,73 @@ macro_rules! report_table {
             /// 2 DIGITAL_REPORT.
             2 DIGITAL in [Mirte13, Mirte12, Upstream11]
                 { "digital_report" [Digital] } custom {
-                    /// 2: a digital input changed.
-                    Digital {
-                        /// GPIO (< 30).
-                        pin: u8,
-                        /// Level, `true` for high: `1` on the wire, in JSON and in `Display`
-                        /// (see [levels and flags](super#levels-and-flags)).
-                        value: bool,
-                    },
+                    variants {
+                        /// 2: a digital input changed.
+                        Digital {
+                            /// GPIO (< 30).
+                            pin: u8,
+                            /// Level, `true` for high: `1` on the wire, in JSON and in `Display`
+                            /// (see [levels and flags](super#levels-and-flags)).
+                            value: bool,
+                        },
+                    }
+                    parse(dialect, r, rid) {
+                        Report::Digital { pin: r.pin("pin")?, value: r.flag("value")? }
+                    }
+                    write(w, dialect) {
+                        Report::Digital { pin, value } => {
+                            w.u8(pin);
+                            w.flag(value);
+                        }
+                    }
+                    fields(view, w) {
+                        Report::Digital { pin, value } => {
+                            w.u("pin", pin);
+                            w.level("value", value);
+                        }
+                    }
+                    read(f, dialect, buf, kind) {
+                        Report::Digital { pin: pin_(f, "pin")?, value: digital_value(f)? }
+                    }
                 };
             /// 3 ANALOG_REPORT.
             3 ANALOG in [Mirte13, Mirte12, Upstream11]
                 { "analog_report" [Analog] } custom {
-                    /// 3: an analog input changed.
-                    Analog {
-                        /// GPIO 26..=30 (mirte 1.3; ADC 0..=4 from older builds is accepted
-                        /// too), ADC 0..=4 in older dialects.
-                        pin: u8,
-                        /// 0..=4095.
-                        value: u16,
-                    },
+                    variants {
+                        /// 3: an analog input changed.
+                        Analog {
+                            /// GPIO 26..=30 (mirte 1.3; ADC 0..=4 from older builds is accepted
+                            /// too), ADC 0..=4 in older dialects.
+                            pin: u8,
+                            /// 0..=4095.
+                            value: u16,
+                        },
+                    }
+                    parse(dialect, r, rid) {
+                        let pin = r.u8()?;
+                        // mirte 1.3 builds before the GPIO renumbering still send ADC
+                        // numbers, and the version was not bumped.
+                        let ok = analog_pin_ok(dialect, pin) || analog_pin_ok(Dialect::Mirte12, pin);
+                        ensure(ok, rid, "pin")?;
+                        let value = r.u16()?;
+                        ensure(value <= 4095, rid, "value")?;
+                        Report::Analog { pin, value }
+                    }
+                    write(w, dialect) {
+                        Report::Analog { pin, value } => {
+                            w.u8(pin);
+                            w.u16(value);
+                        }
+                    }
+                    fields(view, w) {
+                        Report::Analog { pin, value } => {
+                            w.u("pin", pin);
+                            w.u("value", value);
+                        }
+                    }
+                    read(f, dialect, buf, kind) {
+                        Report::Analog { pin: u8_(f, "pin")?, value: f.int("value", 0, 4095)? as u16 }
+                    }
                 };
             /// 5 FIRMWARE_REPORT: firmware version (mirte 1.3 sends 1.3).
             5 FIRMWARE in [Mirte13, Mirte12, Upstream11]
@@ -448,24 +1018,64 @@ macro_rules! report_table {
             /// 8 I2C_WRITE_REPORT (upstream: I2C_WRITE_FAILED).
             8 I2C_WRITE in [Mirte13, Mirte12, Upstream11]
                 { "i2c_write_report" [I2cWrite], "i2c_write_failed" [I2cWriteFailed] } custom {
-                    /// 8 (mirte): I2C write result, always sent.
-                    I2cWrite {
-                        /// Port.
-                        port: u8,
-                        /// The command's `msg_id`.
-                        msg_id: u8,
-                        /// Bytes written, or −1 (error), −2 (timeout).
-                        result: i8,
-                    },
-                    /// 8 (upstream): I2C_WRITE_FAILED, sent on failure only.
-                    I2cWriteFailed {
-                        /// Port.
-                        port: u8,
-                        /// Address.
-                        addr: u8,
-                        /// Meaningless byte.
-                        stale: u8,
-                    },
+                    variants {
+                        /// 8 (mirte): I2C write result, always sent.
+                        I2cWrite {
+                            /// Port.
+                            port: u8,
+                            /// The command's `msg_id`.
+                            msg_id: u8,
+                            /// Bytes written, or −1 (error), −2 (timeout).
+                            result: i8,
+                        },
+                        /// 8 (upstream): I2C_WRITE_FAILED, sent on failure only.
+                        I2cWriteFailed {
+                            /// Port.
+                            port: u8,
+                            /// Address.
+                            addr: u8,
+                            /// Meaningless byte.
+                            stale: u8,
+                        },
+                    }
+                    parse(dialect, r, rid) {
+                        if dialect.is_mirte() {
+                            Report::I2cWrite { port: port(r)?, msg_id: r.u8()?, result: r.i8()? }
+                        } else {
+                            Report::I2cWriteFailed { port: port(r)?, addr: i2c_addr(r)?, stale: r.u8()? }
+                        }
+                    }
+                    write(w, dialect) {
+                        Report::I2cWrite { port, msg_id, result } => {
+                            w.bytes(&[port, msg_id]);
+                            w.i8(result);
+                        }
+                        Report::I2cWriteFailed { port, addr, stale } => w.bytes(&[port, addr, stale]),
+                    }
+                    fields(view, w) {
+                        Report::I2cWrite { port, msg_id, result } => {
+                            w.u("port", port);
+                            w.u("msg_id", msg_id);
+                            w.i("result", result);
+                        }
+                        Report::I2cWriteFailed { port, addr, stale } => {
+                            w.u("port", port);
+                            w.u("addr", addr);
+                            w.u("stale", stale);
+                        }
+                    }
+                    read(f, dialect, buf, kind) {
+                        let port = ranged(f, "port", 0, 1)?;
+                        if kind == "i2c_write_report" {
+                            Report::I2cWrite { port, msg_id: u8_(f, "msg_id")?, result: i8_(f, "result")? }
+                        } else {
+                            Report::I2cWriteFailed {
+                                port,
+                                addr: ranged(f, "addr", 0, 0x7f)?,
+                                stale: u8_(f, "stale")?,
+                            }
+                        }
+                    }
                 };
             /// 9 I2C_READ_FAILED (mirte): I2C read NAK.
             9 I2C_READ_FAILED in [Mirte13, Mirte12]
@@ -480,52 +1090,230 @@ macro_rules! report_table {
             /// 10 I2C_READ_REPORT.
             10 I2C_READ in [Mirte13, Mirte12, Upstream11]
                 { "i2c_read_report" [I2cRead, I2cReadUpstream] } custom {
-                    /// 10 (mirte): I2C read data, `port, msg_id, reg, n, 00, data`.
-                    I2cRead {
-                        /// Port.
-                        port: u8,
-                        /// The command's `msg_id`.
-                        msg_id: u8,
-                        /// Register.
-                        reg: u8,
-                        /// 1..=57 bytes.
-                        data: &'a [u8],
-                    },
-                    /// 10 (upstream): I2C read data, `port, addr, reg, n, data`.
-                    I2cReadUpstream {
-                        /// Port.
-                        port: u8,
-                        /// Address.
-                        addr: u8,
-                        /// Register.
-                        reg: u8,
-                        /// 1..=57 bytes.
-                        data: &'a [u8],
-                    },
+                    variants {
+                        /// 10 (mirte): I2C read data, `port, msg_id, reg, n, 00, data`.
+                        I2cRead {
+                            /// Port.
+                            port: u8,
+                            /// The command's `msg_id`.
+                            msg_id: u8,
+                            /// Register.
+                            reg: u8,
+                            /// 1..=57 bytes.
+                            data: &'a [u8],
+                        },
+                        /// 10 (upstream): I2C read data, `port, addr, reg, n, data`.
+                        I2cReadUpstream {
+                            /// Port.
+                            port: u8,
+                            /// Address.
+                            addr: u8,
+                            /// Register.
+                            reg: u8,
+                            /// 1..=57 bytes.
+                            data: &'a [u8],
+                        },
+                    }
+                    parse(dialect, r, rid) {
+                        if dialect.is_mirte() {
+                            let (port, msg_id, reg) = (port(r)?, r.u8()?, r.u8()?);
+                            let n = r.u8()?;
+                            ensure(r.u8()? == 0, rid, "pad")?;
+                            Report::I2cRead { port, msg_id, reg, data: r.take(usize::from(n))? }
+                        } else {
+                            let (port, addr, reg) = (port(r)?, i2c_addr(r)?, r.u8()?);
+                            let n = r.u8()?;
+                            Report::I2cReadUpstream { port, addr, reg, data: r.take(usize::from(n))? }
+                        }
+                    }
+                    write(w, dialect) {
+                        Report::I2cRead { port, msg_id, reg, data } => {
+                            w.bytes(&[port, msg_id, reg, data.len() as u8, 0]);
+                            w.bytes(data);
+                        }
+                        Report::I2cReadUpstream { port, addr, reg, data } => {
+                            w.bytes(&[port, addr, reg, data.len() as u8]);
+                            w.bytes(data);
+                        }
+                    }
+                    fields(view, w) {
+                        Report::I2cRead { port, msg_id, reg, data } => {
+                            w.u("port", port);
+                            w.u("msg_id", msg_id);
+                            w.u("reg", reg);
+                            w.bytes("data", data);
+                        }
+                        Report::I2cReadUpstream { port, addr, reg, data } => {
+                            w.u("port", port);
+                            w.u("addr", addr);
+                            w.u("reg", reg);
+                            w.bytes("data", data);
+                        }
+                    }
+                    read(f, dialect, buf, kind) {
+                        let port = ranged(f, "port", 0, 1)?;
+                        if dialect == Dialect::Upstream11 {
+                            Report::I2cReadUpstream {
+                                port,
+                                addr: ranged(f, "addr", 0, 0x7f)?,
+                                reg: u8_(f, "reg")?,
+                                data: bytes_in(f, "data", buf)?,
+                            }
+                        } else {
+                            Report::I2cRead {
+                                port,
+                                msg_id: u8_(f, "msg_id")?,
+                                reg: u8_(f, "reg")?,
+                                data: bytes_in(f, "data", buf)?,
+                            }
+                        }
+                    }
                 };
             /// 11 SONAR_DISTANCE.
             11 SONAR in [Mirte13, Mirte12, Upstream11]
                 { "sonar_distance" [Sonar] } custom {
-                    /// 11: sonar distance.
-                    Sonar(Sonar),
+                    variants {
+                        /// 11: sonar distance.
+                        Sonar(Sonar),
+                    }
+                    parse(dialect, r, rid) {
+                        let trig = r.pin("trig")?;
+                        Report::Sonar(match dialect {
+                            Dialect::Mirte13 if r.remaining() == 3 => {
+                                Sonar::WithEcho { trig, echo: r.pin("echo")?, cm: sonar_cm(r)? }
+                            }
+                            Dialect::Mirte13 => Sonar::TrigOnly { trig, cm: sonar_cm(r)? },
+                            Dialect::Mirte12 => {
+                                let m = r.u8()?;
+                                let cm = r.u8()?;
+                                ensure(cm < 100, rid, "cm")?;
+                                Sonar::MetresCm { trig, m, cm }
+                            }
+                            Dialect::Upstream11 => {
+                                let cm = r.u8()?;
+                                let hundredths = r.u8()?;
+                                ensure(hundredths < 100, rid, "hundredths")?;
+                                Sonar::CmHundredths { trig, cm, hundredths }
+                            }
+                        })
+                    }
+                    write(w, dialect) {
+                        Report::Sonar(Sonar::WithEcho { trig, echo, cm }) => {
+                            w.bytes(&[trig, echo]);
+                            w.u16(cm);
+                        }
+                        Report::Sonar(Sonar::TrigOnly { trig, cm }) => {
+                            w.u8(trig);
+                            w.u16(cm);
+                        }
+                        Report::Sonar(Sonar::MetresCm { trig, m, cm }) => w.bytes(&[trig, m, cm]),
+                        Report::Sonar(Sonar::CmHundredths { trig, cm, hundredths }) => {
+                            w.bytes(&[trig, cm, hundredths])
+                        }
+                    }
+                    fields(view, w) {
+                        Report::Sonar(Sonar::WithEcho { trig, echo, cm }) => {
+                            w.u("trig", trig);
+                            w.u("echo", echo);
+                            sonar_cm(w, cm);
+                        }
+                        Report::Sonar(Sonar::TrigOnly { trig, cm }) => {
+                            w.u("trig", trig);
+                            sonar_cm(w, cm);
+                        }
+                        Report::Sonar(Sonar::MetresCm { trig, m, cm }) => {
+                            w.u("trig", trig);
+                            w.u("m", m);
+                            w.u("cm", cm);
+                        }
+                        Report::Sonar(Sonar::CmHundredths { trig, cm, hundredths }) => {
+                            w.u("trig", trig);
+                            w.u("cm", cm);
+                            w.u("hundredths", hundredths);
+                        }
+                    }
+                    read(f, dialect, buf, kind) {
+                        Report::Sonar(match dialect {
+                            Dialect::Mirte13 => {
+                                let trig = pin_(f, "trig")?;
+                                if f.has("echo") {
+                                    Sonar::WithEcho { trig, echo: pin_(f, "echo")?, cm: sonar_cm(f)? }
+                                } else {
+                                    Sonar::TrigOnly { trig, cm: sonar_cm(f)? }
+                                }
+                            }
+                            Dialect::Mirte12 => Sonar::MetresCm {
+                                trig: pin_(f, "trig")?,
+                                m: u8_(f, "m")?,
+                                cm: u8_(f, "cm")?,
+                            },
+                            Dialect::Upstream11 => Sonar::CmHundredths {
+                                trig: pin_(f, "trig")?,
+                                cm: u8_(f, "cm")?,
+                                hundredths: u8_(f, "hundredths")?,
+                            },
+                        })
+                    }
                 };
             /// 12 DHT_REPORT.
             12 DHT in [Mirte13, Mirte12, Upstream11]
                 { "dht_report" [Dht] } custom {
-                    /// 12: DHT reading (all zeros after a read error). Below 0 °C both
-                    /// temperature parts are negative.
-                    Dht {
-                        /// GPIO (< 30).
-                        pin: u8,
-                        /// Humidity, integer part.
-                        humidity: u8,
-                        /// Humidity, hundredths (0..=99).
-                        humidity_hundredths: u8,
-                        /// Temperature in °C, integer part.
-                        temp: i8,
-                        /// Temperature, hundredths (−99..=99, same sign as `temp`).
-                        temp_hundredths: i8,
-                    },
+                    variants {
+                        /// 12: DHT reading (all zeros after a read error). Below 0 °C both
+                        /// temperature parts are negative.
+                        Dht {
+                            /// GPIO (< 30).
+                            pin: u8,
+                            /// Humidity, integer part.
+                            humidity: u8,
+                            /// Humidity, hundredths (0..=99).
+                            humidity_hundredths: u8,
+                            /// Temperature in °C, integer part.
+                            temp: i8,
+                            /// Temperature, hundredths (−99..=99, same sign as `temp`).
+                            temp_hundredths: i8,
+                        },
+                    }
+                    parse(dialect, r, rid) {
+                        let pin = r.pin("pin")?;
+                        let humidity = r.u8()?;
+                        let humidity_hundredths = r.u8()?;
+                        ensure(humidity_hundredths < 100, rid, "humidity_hundredths")?;
+                        let temp = r.i8()?;
+                        let temp_hundredths = r.i8()?;
+                        let same_sign = !(temp > 0 && temp_hundredths < 0 || temp < 0 && temp_hundredths > 0);
+                        ensure(
+                            (-99..=99).contains(&temp_hundredths) && same_sign,
+                            rid,
+                            "temp_hundredths",
+                        )?;
+                        Report::Dht { pin, humidity, humidity_hundredths, temp, temp_hundredths }
+                    }
+                    write(w, dialect) {
+                        Report::Dht { pin, humidity, humidity_hundredths, temp, temp_hundredths } => {
+                            w.bytes(&[pin, humidity, humidity_hundredths]);
+                            w.i8(temp);
+                            w.i8(temp_hundredths);
+                        }
+                    }
+                    fields(view, w) {
+                        Report::Dht { pin, humidity, humidity_hundredths, temp, temp_hundredths } => {
+                            w.u("pin", pin);
+                            w.u("hum_int", humidity);
+                            w.u("hum_hundredths", humidity_hundredths);
+                            w.i("temp_int", temp);
+                            w.i("temp_hundredths", temp_hundredths);
+                        }
+                    }
+                    read(f, dialect, buf, kind) {
+                        Report::Dht {
+                            pin: pin_(f, "pin")?,
+                            humidity: u8_(f, "hum_int")?,
+                            humidity_hundredths: u8_(f, "hum_hundredths")?,
+                            temp: i8_(f, "temp_int")?,
+                            temp_hundredths: i8_(f, "temp_hundredths")?,
+                        }
+                    }
                 };
             /// 13 SPI_REPORT: SPI read data.
             13 SPI in [Mirte13, Mirte12, Upstream11]
@@ -538,35 +1326,111 @@ macro_rules! report_table {
             /// 14 ENCODER_REPORT.
             14 ENCODER in [Mirte13, Mirte12]
                 { "encoder_report" [Encoder] } custom {
-                    /// 14 (mirte): encoder steps since the last report (never 0).
-                    Encoder {
-                        /// GPIO A (< 30).
-                        pin: u8,
-                        /// Steps.
-                        steps: i8,
-                    },
+                    variants {
+                        /// 14 (mirte): encoder steps since the last report (never 0).
+                        Encoder {
+                            /// GPIO A (< 30).
+                            pin: u8,
+                            /// Steps.
+                            steps: i8,
+                        },
+                    }
+                    parse(dialect, r, rid) {
+                        let pin = r.pin("pin")?;
+                        let steps = r.i8()?;
+                        ensure(steps != 0, rid, "steps")?;
+                        Report::Encoder { pin, steps }
+                    }
+                    write(w, dialect) {
+                        Report::Encoder { pin, steps } => {
+                            w.u8(pin);
+                            w.i8(steps);
+                        }
+                    }
+                    fields(view, w) {
+                        Report::Encoder { pin, steps } => {
+                            w.u("pin_a", pin);
+                            w.i("steps", steps);
+                        }
+                    }
+                    read(f, dialect, buf, kind) {
+                        Report::Encoder { pin: pin_(f, "pin_a")?, steps: i8_(f, "steps")? }
+                    }
                 };
             /// 20 SENSOR_REPORT.
             20 SENSOR in [Mirte13, Mirte12]
                 { "sensor_report" [Sensor] } custom {
-                    /// 20 (mirte 1.3): a sensor reading.
-                    Sensor {
-                        /// The sensor's number.
-                        sensor_num: u8,
-                        /// Type and data.
-                        reading: SensorReading,
-                    },
+                    variants {
+                        /// 20 (mirte 1.3): a sensor reading.
+                        Sensor {
+                            /// The sensor's number.
+                            sensor_num: u8,
+                            /// Type and data.
+                            reading: SensorReading,
+                        },
+                    }
+                    parse(dialect, r, rid) {
+                        let sensor_num = r.u8()?;
+                        let sensor_type = SensorType::from_u8(r.u8()?)
+                            .ok_or(Error::OutOfRange { id: rid, field: "sensor_type" })?;
+                        Report::Sensor { sensor_num, reading: SensorReading::parse(r, sensor_type, dialect)? }
+                    }
+                    write(w, dialect) {
+                        Report::Sensor { sensor_num, reading } => {
+                            w.bytes(&[sensor_num, reading.sensor_type().as_u8()]);
+                            reading.write(w, dialect);
+                        }
+                    }
+                    fields(view, w) {
+                        Report::Sensor { sensor_num, reading } => {
+                            w.u("sensor_num", sensor_num);
+                            w.s("sensor_type", reading.sensor_type().name());
+                            w.obj("reading", &reading);
+                        }
+                    }
+                    read(f, dialect, buf, kind) {
+                        let sensor_num = u8_(f, "sensor_num")?;
+                        let sensor_type = sensor_type(f)?;
+                        Report::Sensor {
+                            sensor_num,
+                            reading: nested(f, "reading", |r| sensor_reading(sensor_type, r))?,
+                        }
+                    }
                 };
             /// 21 SENSOR_MAIN_REPORT.
             21 SENSOR_MAIN in [Mirte13]
                 { "sensor_main_report" [SensorSupported] } custom {
-                    /// 21 (mirte 1.3): answer to a sensor check.
-                    SensorSupported {
-                        /// The type asked about.
-                        sensor_type: u8,
-                        /// Supported.
-                        supported: bool,
-                    },
+                    variants {
+                        /// 21 (mirte 1.3): answer to a sensor check.
+                        SensorSupported {
+                            /// The type asked about.
+                            sensor_type: u8,
+                            /// Supported.
+                            supported: bool,
+                        },
+                    }
+                    parse(dialect, r, rid) {
+                        ensure(r.u8()? == 0, rid, "subtype")?;
+                        Report::SensorSupported { sensor_type: r.u8()?, supported: r.flag("supported")? }
+                    }
+                    write(w, dialect) {
+                        Report::SensorSupported { sensor_type, supported } => {
+                            w.bytes(&[0, sensor_type]);
+                            w.flag(supported);
+                        }
+                    }
+                    fields(view, w) {
+                        Report::SensorSupported { sensor_type, supported } => {
+                            w.type_byte("sensor_type", sensor_type, SensorType::NAMES);
+                            w.flag("supported", supported);
+                        }
+                    }
+                    read(f, dialect, buf, kind) {
+                        Report::SensorSupported {
+                            sensor_type: type_byte(f, "sensor_type", SensorType::NAMES)?,
+                            supported: flag(f, "supported")?,
+                        }
+                    }
                 };
             /// 32 PONG_REPORT (mirte): answer to PING.
             32 PONG in [Mirte13, Mirte12]
@@ -579,24 +1443,74 @@ macro_rules! report_table {
             /// 33 MODULE_MAIN_REPORT.
             33 MODULE_MAIN in [Mirte13]
                 { "module_main_report" [ModuleSupported] } custom {
-                    /// 33 (mirte 1.3): answer to a module check.
-                    ModuleSupported {
-                        /// The type asked about.
-                        module_type: u8,
-                        /// Supported.
-                        supported: bool,
-                    },
+                    variants {
+                        /// 33 (mirte 1.3): answer to a module check.
+                        ModuleSupported {
+                            /// The type asked about.
+                            module_type: u8,
+                            /// Supported.
+                            supported: bool,
+                        },
+                    }
+                    parse(dialect, r, rid) {
+                        ensure(r.u8()? == 0, rid, "subtype")?;
+                        Report::ModuleSupported { module_type: r.u8()?, supported: r.flag("supported")? }
+                    }
+                    write(w, dialect) {
+                        Report::ModuleSupported { module_type, supported } => {
+                            w.bytes(&[0, module_type]);
+                            w.flag(supported);
+                        }
+                    }
+                    fields(view, w) {
+                        Report::ModuleSupported { module_type, supported } => {
+                            w.type_byte("module_type", module_type, ModuleType::NAMES);
+                            w.flag("supported", supported);
+                        }
+                    }
+                    read(f, dialect, buf, kind) {
+                        Report::ModuleSupported {
+                            module_type: type_byte(f, "module_type", ModuleType::NAMES)?,
+                            supported: flag(f, "supported")?,
+                        }
+                    }
                 };
             /// 34 MODULE_REPORT.
             34 MODULE in [Mirte13]
                 { "module_report" [Module] } custom {
-                    /// 34 (mirte 1.3): a module's report.
-                    Module {
-                        /// The module's number.
-                        module_num: u8,
-                        /// Type, subtype and data.
-                        report: ModuleReport<'a>,
-                    },
+                    variants {
+                        /// 34 (mirte 1.3): a module's report.
+                        Module {
+                            /// The module's number.
+                            module_num: u8,
+                            /// Type, subtype and data.
+                            report: ModuleReport<'a>,
+                        },
+                    }
+                    parse(dialect, r, rid) {
+                        Report::Module { module_num: r.u8()?, report: ModuleReport::parse(r)? }
+                    }
+                    write(w, dialect) {
+                        Report::Module { module_num, report } => {
+                            w.u8(module_num);
+                            report.write(w);
+                        }
+                    }
+                    fields(view, w) {
+                        Report::Module { module_num, report } => {
+                            w.u("module_num", module_num);
+                            w.s("module_type", report.module_type().name());
+                            w.obj("message", &report);
+                        }
+                    }
+                    read(f, dialect, buf, kind) {
+                        let module_num = u8_(f, "module_num")?;
+                        let module_type = module_type(f)?;
+                        Report::Module {
+                            module_num,
+                            report: nested(f, "message", move |m| module_report(module_type, m, buf))?,
+                        }
+                    }
                 };
             /// 35 GET_ID_REPORT (mirte 1.3): the saved id (`FF` if never set).
             35 GET_ID in [Mirte13]
@@ -640,7 +1554,8 @@ pub(crate) use report_table;
 /// §7). The enum's docs and name come first, then one row per subtype: its
 /// byte, its `subtype` name in the JSON-lines schema, its variants in
 /// brackets, and its payload as a command row's (`plain` fields of the same
-/// kinds, or `custom` variants with hand-written arms).
+/// kinds, or `custom { … }` with its variants and code: `parse(r, id)`
+/// after the subtype byte, `write(w)`, `fields(view, w)`, `read(f)`).
 macro_rules! hiwonder_table {
     ($callback:ident) => {
         $callback! {
@@ -649,17 +1564,86 @@ macro_rules! hiwonder_table {
             /// PING is less than 2 s old.
             HiwonderCommand;
             1 "set_angle" [SetAngle] custom {
-                /// 1 SET_ANGLE: 1..=5 moves.
-                SetAngle(List<ServoMove, 5>),
+                variants {
+                    /// 1 SET_ANGLE: 1..=5 moves.
+                    SetAngle(List<ServoMove, 5>),
+                }
+                parse(r, id) {
+                    let count = r.u8()?;
+                    ensure((1..=5).contains(&count), id, "count")?;
+                    let mut moves = List::new();
+                    for _ in 0..count {
+                        let m = ServoMove { idx: r.u8()?, centideg: r.u16()?, time_ms: r.u16()? };
+                        ensure(m.centideg <= MAX_CENTIDEG, id, "centideg")?;
+                        moves.push(m).map_err(|_| r.bad_length())?;
+                    }
+                    HiwonderCommand::SetAngle(moves)
+                }
+                write(w) {
+                    HiwonderCommand::SetAngle(moves) => {
+                        w.u8(moves.len() as u8);
+                        for m in &moves {
+                            w.u8(m.idx);
+                            w.u16(m.centideg);
+                            w.u16(m.time_ms);
+                        }
+                    }
+                }
+                fields(view, w) {
+                    HiwonderCommand::SetAngle(moves) => w.objs("moves", &moves),
+                }
+                read(f) {
+                    let moves = objects(f, "moves", |m| {
+                        Ok(ServoMove {
+                            idx: u8_(m, "idx")?,
+                            centideg: u16_(m, "centideg")?,
+                            time_ms: u16_(m, "time_ms")?,
+                        })
+                    })?;
+                    HiwonderCommand::SetAngle(
+                        List::from_slice(&moves)
+                            .map_err(|_| format!("`moves` holds {}, at most 5", moves.len()))?,
+                    )
+                }
             };
             2 "enable" [Enable] custom {
-                /// 2 ENABLE: an empty list means all servos.
-                Enable {
-                    /// Torque on or off.
-                    enabled: bool,
-                    /// Servo indices (at most 25), or none for all.
-                    servos: List<u8, 25>,
-                },
+                variants {
+                    /// 2 ENABLE: an empty list means all servos.
+                    Enable {
+                        /// Torque on or off.
+                        enabled: bool,
+                        /// Servo indices (at most 25), or none for all.
+                        servos: List<u8, 25>,
+                    },
+                }
+                parse(r, id) {
+                    let count = r.u8()?;
+                    let enabled = r.flag("enabled")?;
+                    let servos = List::from_slice(r.take(usize::from(count))?).map_err(|_| r.bad_length())?;
+                    HiwonderCommand::Enable { enabled, servos }
+                }
+                write(w) {
+                    HiwonderCommand::Enable { enabled, servos } => {
+                        w.u8(servos.len() as u8);
+                        w.flag(enabled);
+                        w.bytes(&servos);
+                    }
+                }
+                fields(view, w) {
+                    HiwonderCommand::Enable { enabled, servos } => {
+                        w.flag("enabled", enabled);
+                        w.bytes("servos", &servos);
+                    }
+                }
+                read(f) {
+                    let enabled = flag(f, "enabled")?;
+                    let servos = bytes(f, "servos")?;
+                    HiwonderCommand::Enable {
+                        enabled,
+                        servos: List::from_slice(&servos)
+                            .map_err(|_| format!("`servos` holds {}, at most 25", servos.len()))?,
+                    }
+                }
             };
             /// 3 ID_WRITE: sets the id of whatever servo is on the bus.
             3 "id_write" [IdWrite] plain IdWrite {
@@ -731,8 +1715,42 @@ macro_rules! ssd1306_table {
             /// SSD1306 data (module type 3), spec §7.3.
             Ssd1306Command;
             0 "text" [Text] custom {
-                /// 0 TEXT: at most 26 characters, appended to the text buffer.
-                Text(List<u8, 26>),
+                variants {
+                    /// 0 TEXT: at most 26 characters, appended to the text buffer.
+                    Text(List<u8, 26>),
+                }
+                parse(r, id) {
+                    let n = r.u8()?;
+                    ensure(n <= 26, id, "len")?;
+                    Ssd1306Command::Text(List::from_slice(r.take(usize::from(n))?).map_err(|_| r.bad_length())?)
+                }
+                write(w) {
+                    Ssd1306Command::Text(text) => {
+                        w.u8(text.len() as u8);
+                        w.bytes(&text);
+                    }
+                }
+                fields(view, w) {
+                    Ssd1306Command::Text(text) => w.v("text", V::Latin1(&text)),
+                }
+                read(f) {
+                    let value = f.value("text")?;
+                    let text = value
+                        .as_str()
+                        .ok_or_else(|| format!("field `text` must be a string, found {value}"))?;
+                    // One character per byte (ISO 8859-1), as it is written.
+                    let bytes = text
+                        .chars()
+                        .map(u8::try_from)
+                        .collect::<Result<Vec<u8>, _>>()
+                        .map_err(|_| {
+                            format!("field `text` must hold characters U+0000..=U+00FF only, found {value}")
+                        })?;
+                    Ssd1306Command::Text(
+                        List::from_slice(&bytes)
+                            .map_err(|_| format!("field `text` holds {} bytes, at most 26", bytes.len()))?,
+                    )
+                }
             };
             /// 1 TEXT_DONE: render the text buffer, then clear it.
             1 "text_done" [TextDone] plain TextDone {};
