@@ -345,7 +345,7 @@ super::table::command_table!(command_fields);
 /// A report's payload fields, from the report table: the `plain` rows'
 /// fields by their kind, the `custom` rows by [`ReportView::visit_custom`].
 macro_rules! report_fields {
-    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt
         { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
         impl ReportView<'_, '_> {
             fn payload(&self, w: &mut W<'_>) {

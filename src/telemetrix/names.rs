@@ -206,7 +206,7 @@ impl Command<'_> {
 
 /// The report names, from the report table.
 macro_rules! report_names {
-    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt
         { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
         impl Report<'_> {
             /// Every report `type` (upstream's report 8 is `i2c_write_failed`);

@@ -8,12 +8,10 @@ use super::module::{module_report_len_ok, ModuleReport};
 use super::quirk::report_quirk;
 use super::sensor::{SensorReading, SensorType};
 use super::wire::{
-    analog_pin_ok, counted, report_id, report_known, split_frame, Reader, Writer, MAX_REPORT_FRAME,
+    analog_pin_ok, counted, report_known, split_frame, Reader, Writer, MAX_REPORT_FRAME,
 };
 use crate::encode::check_room;
 use crate::{Encode, EncodeError};
-
-use report_id as id;
 
 /// Largest I2C read (spec §4, command 11).
 const I2C_READ_MAX: u8 = 57;
@@ -23,80 +21,56 @@ const SPI_READ_MAX: u8 = 60;
 /// the firmware gives up after 30 ms of echo, about 517 cm.
 const SONAR_CM_LIMIT: u16 = 1000;
 
-/// How many frame bytes (counting `LEN` and id) the early `LEN` check of
-/// report `id` looks at.
-pub(crate) const fn report_header_len(id: u8) -> usize {
-    match id {
-        id::I2C_READ => 6,
-        id::SPI | id::SENSOR => 4,
-        id::MODULE => 5,
-        id::FEATURE_CHECK => 8,
-        _ => 2,
-    }
-}
-
-/// Whether `len` is possible for a known report, given the frame bytes known so
-/// far (at least `LEN` and id). Never rejects a frame [`parse_report`] accepts.
-pub(crate) fn report_len_ok(dialect: Dialect, len: u8, frame: &[u8]) -> bool {
-    let Some(&rid) = frame.get(1) else {
-        return true;
-    };
-    let at = |i: usize| frame.get(i).copied();
-    match rid {
-        id::SERIAL_LOOP_BACK | id::GET_ID | id::SET_ID => len == 2,
-        id::DIGITAL | id::FIRMWARE | id::ENCODER | id::PONG => len == 3,
-        id::ANALOG | id::I2C_WRITE | id::I2C_READ_FAILED | id::SENSOR_MAIN | id::MODULE_MAIN => {
-            len == 4
-        }
-        id::DEBUG_PRINT => len == 4,
-        id::UNIQUE_ID => len == 9,
-        id::DHT => len == 6,
-        id::SONAR => len == 4 || (len == 5 && matches!(dialect, Dialect::Mirte13)),
-        id::I2C_READ => {
-            let extra = if dialect.is_mirte() { 6 } else { 5 };
-            match at(5) {
-                None => len > extra && len <= extra + I2C_READ_MAX,
-                Some(n) => (1..=I2C_READ_MAX).contains(&n) && len == extra + n,
+/// `report_len_ok`, from the report table's `len` rules.
+macro_rules! report_lens {
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt
+        { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
+        /// Whether `len` is possible for a known report, given the frame bytes
+        /// known so far (at least `LEN` and id). Never rejects a frame
+        /// [`parse_report_with`] accepts.
+        pub(crate) fn report_len_ok(dialect: Dialect, len: u8, frame: &[u8]) -> bool {
+            let Some(&rid) = frame.get(1) else {
+                return true;
+            };
+            let at = |i: usize| frame.get(i).copied();
+            match rid {
+                $($n => len_rule!((dialect, len, frame, at), $rlen),)*
+                _ => true,
             }
         }
-        id::SPI => match at(3) {
-            None => (3..=3 + SPI_READ_MAX).contains(&len),
-            Some(n) => n <= SPI_READ_MAX && len == 3 + n,
-        },
-        // mirte 1.2 reports its one sensor, the VEML6040 (spec §10.1).
-        id::SENSOR if dialect == Dialect::Mirte12 => match at(3) {
-            None => len == 11,
-            Some(t) => t == SensorType::Veml6040.as_u8() && len == 11,
-        },
-        id::SENSOR => match at(3) {
-            None => (3..=56).contains(&len),
-            Some(t) => match SensorType::from_u8(t).and_then(SensorType::data_len) {
-                None => false,
-                Some((min, max)) => {
-                    let data = usize::from(len).wrapping_sub(3);
-                    len >= 3 && data >= min && data <= max && (t != 8 || data % 2 == 0)
-                }
-            },
-        },
-        id::MODULE => module_report_len_ok(len, frame),
-        id::FEATURE_CHECK => match (at(2), at(3)) {
-            (Some(msg_type), Some(1)) => match feature_extras(msg_type) {
-                Extras::Counted => match at(7) {
-                    // At most 8 pins follow, as checked once the count is in:
-                    // a length refused then must be refused now (the framing
-                    // answers the same for every longer input).
-                    None => (7..=15).contains(&len),
-                    Some(count) => count <= 8 && usize::from(len) == 7 + usize::from(count),
-                },
-                Extras::Len(a, b) => len == 3 + a || len == 3 + b,
-            },
-            (Some(_), Some(0)) => len == 3,
-            (Some(_), Some(_)) => false,
-            _ => (3..=15).contains(&len),
-        },
-        _ => true,
-    }
+
+        /// How many frame bytes (counting `LEN` and id) the early `LEN` check
+        /// of report `id` looks at.
+        pub(crate) const fn report_header_len(id: u8) -> usize {
+            match id {
+                $($n => len_rule!(header $rlen),)*
+                _ => 2,
+            }
+        }
+    };
 }
+
+/// A report row's `len` rule: the one `LEN` of a fixed layout, or a closure
+/// of the dialect, `LEN`, the frame so far and its byte at an index, after
+/// `header(n)` when it looks at more than `LEN` and id (the first `n` bytes);
+/// `header` gives that `n`.
+macro_rules! len_rule {
+    (($dialect:ident, $len:ident, $frame:ident, $at:ident), { $fixed:literal }) => {
+        $len == $fixed
+    };
+    ($ctx:tt, { $(header($n:literal))? |$($param:ident),*| $($body:tt)* }) => {{
+        bind_hook!(($($param),*) = $ctx);
+        $($body)*
+    }};
+    (header { header($n:literal) $($rule:tt)* }) => {
+        $n
+    };
+    (header $rule:tt) => {
+        2
+    };
+}
+
+super::table::report_table!(report_lens);
 
 /// The extras a FEATURE_CHECK report carries for a `msg_type` (spec §5).
 enum Extras {
@@ -241,7 +215,7 @@ impl Sonar {
 /// built from its fields, a `custom` row gives its variants as written.
 macro_rules! report_enum {
     (@rows [$($vars:tt)*]
-        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] { $name:literal [$p:ident] }
+        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt { $name:literal [$p:ident] }
         plain { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? };
         $($rest:tt)*) => {
         report_enum!(@rows [
@@ -249,7 +223,7 @@ macro_rules! report_enum {
         ] $($rest)*);
     };
     (@rows [$($vars:tt)*]
-        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] { $($name:literal [$($v:ident),+]),+ }
+        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt { $($name:literal [$($v:ident),+]),+ }
         custom { variants { $($decl:tt)* } $($hooks:tt)* }; $($rest:tt)*) => {
         report_enum!(@rows [$($vars)* $($decl)*] $($rest)*);
     };
@@ -288,7 +262,7 @@ super::table::report_table!(report_enum);
 /// The codec's parts that come from the report table: `Report::id` and
 /// every row's payload writer.
 macro_rules! report_codec {
-    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt
         { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
         impl Report<'_> {
             /// The report id.
@@ -319,7 +293,7 @@ macro_rules! parse_report_match {
         parse_report_match!(@rows ($dialect, $r, $rid) [$($custom)*] [] $($rows)*)
     };
     (@rows ($dialect:ident, $r:ident, $rid:ident) $custom:tt [$($arms:tt)*]
-        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] { $($name:literal [$($v:ident),+]),+ }
+        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt { $($name:literal [$($v:ident),+]),+ }
         custom { variants $vars:tt parse ($($param:ident),*) { $($body:tt)* } $($hooks:tt)* };
         $($rest:tt)*) => {
         parse_report_match!(@rows ($dialect, $r, $rid) $custom [
@@ -331,7 +305,7 @@ macro_rules! parse_report_match {
         ] $($rest)*)
     };
     (@rows ($dialect:ident, $r:ident, $rid:ident) $custom:tt [$($arms:tt)*]
-        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] { $name:literal [$p:ident] }
+        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt { $name:literal [$p:ident] }
         plain { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? };
         $($rest:tt)*) => {
         parse_report_match!(@rows ($dialect, $r, $rid) $custom [

@@ -739,7 +739,7 @@ super::table::command_table!(command_reader);
 /// The members of a report `kind` (one of [`Report::NAMES`]), from the
 /// report table as for commands, and an unknown report's.
 macro_rules! report_reader {
-    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt
         { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
         fn read_report<'b>(
             kind: &str,

@@ -925,13 +925,13 @@ macro_rules! report_table {
         $callback! {
             $([$($extra)+])?
             /// 0 SERIAL_LOOP_BACK_REPORT: loopback echo.
-            0 SERIAL_LOOP_BACK in [Mirte13, Mirte12, Upstream11]
+            0 SERIAL_LOOP_BACK in [Mirte13, Mirte12, Upstream11] len { 2 }
                 { "serial_loop_back_report" [LoopBack] } plain {
                     /// The echoed byte.
                     byte: u8 "byte",
                 };
             /// 2 DIGITAL_REPORT.
-            2 DIGITAL in [Mirte13, Mirte12, Upstream11]
+            2 DIGITAL in [Mirte13, Mirte12, Upstream11] len { 3 }
                 { "digital_report" [Digital] } custom {
                     variants {
                         /// 2: a digital input changed.
@@ -963,7 +963,7 @@ macro_rules! report_table {
                     }
                 };
             /// 3 ANALOG_REPORT.
-            3 ANALOG in [Mirte13, Mirte12, Upstream11]
+            3 ANALOG in [Mirte13, Mirte12, Upstream11] len { 4 }
                 { "analog_report" [Analog] } custom {
                     variants {
                         /// 3: an analog input changed.
@@ -1002,7 +1002,7 @@ macro_rules! report_table {
                     }
                 };
             /// 5 FIRMWARE_REPORT: firmware version (mirte 1.3 sends 1.3).
-            5 FIRMWARE in [Mirte13, Mirte12, Upstream11]
+            5 FIRMWARE in [Mirte13, Mirte12, Upstream11] len { 3 }
                 { "firmware_version" [FirmwareVersion] } plain {
                     /// Major.
                     major: u8 "major",
@@ -1010,13 +1010,13 @@ macro_rules! report_table {
                     minor: u8 "minor",
                 };
             /// 6 REPORT_PICO_UNIQUE_ID: unique id (6 board bytes, then `00 00` in mirte firmware).
-            6 UNIQUE_ID in [Mirte13, Mirte12, Upstream11]
+            6 UNIQUE_ID in [Mirte13, Mirte12, Upstream11] len { 9 }
                 { "pico_unique_id" [UniqueId] } plain {
                     /// The 8 bytes.
                     id: array(8) "id",
                 };
             /// 8 I2C_WRITE_REPORT (upstream: I2C_WRITE_FAILED).
-            8 I2C_WRITE in [Mirte13, Mirte12, Upstream11]
+            8 I2C_WRITE in [Mirte13, Mirte12, Upstream11] len { 4 }
                 { "i2c_write_report" [I2cWrite], "i2c_write_failed" [I2cWriteFailed] } custom {
                     variants {
                         /// 8 (mirte): I2C write result, always sent.
@@ -1078,7 +1078,7 @@ macro_rules! report_table {
                     }
                 };
             /// 9 I2C_READ_FAILED (mirte): I2C read NAK.
-            9 I2C_READ_FAILED in [Mirte13, Mirte12]
+            9 I2C_READ_FAILED in [Mirte13, Mirte12] len { 4 }
                 { "i2c_read_failed" [I2cReadFailed] } plain {
                     /// Port.
                     port: range(0, 1) "port",
@@ -1088,7 +1088,15 @@ macro_rules! report_table {
                     stale: u8 "stale",
                 };
             /// 10 I2C_READ_REPORT.
-            10 I2C_READ in [Mirte13, Mirte12, Upstream11]
+            10 I2C_READ in [Mirte13, Mirte12, Upstream11] len {
+                header(6) |dialect, len, frame, at| {
+                    let extra = if dialect.is_mirte() { 6 } else { 5 };
+                    match at(5) {
+                        None => len > extra && len <= extra + I2C_READ_MAX,
+                        Some(n) => (1..=I2C_READ_MAX).contains(&n) && len == extra + n,
+                    }
+                }
+            }
                 { "i2c_read_report" [I2cRead, I2cReadUpstream] } custom {
                     variants {
                         /// 10 (mirte): I2C read data, `port, msg_id, reg, n, 00, data`.
@@ -1170,7 +1178,7 @@ macro_rules! report_table {
                     }
                 };
             /// 11 SONAR_DISTANCE.
-            11 SONAR in [Mirte13, Mirte12, Upstream11]
+            11 SONAR in [Mirte13, Mirte12, Upstream11] len { |dialect, len, frame, at| len == 4 || (len == 5 && dialect == Dialect::Mirte13) }
                 { "sonar_distance" [Sonar] } custom {
                     variants {
                         /// 11: sonar distance.
@@ -1256,7 +1264,7 @@ macro_rules! report_table {
                     }
                 };
             /// 12 DHT_REPORT.
-            12 DHT in [Mirte13, Mirte12, Upstream11]
+            12 DHT in [Mirte13, Mirte12, Upstream11] len { 6 }
                 { "dht_report" [Dht] } custom {
                     variants {
                         /// 12: DHT reading (all zeros after a read error). Below 0 °C both
@@ -1316,7 +1324,12 @@ macro_rules! report_table {
                     }
                 };
             /// 13 SPI_REPORT: SPI read data.
-            13 SPI in [Mirte13, Mirte12, Upstream11]
+            13 SPI in [Mirte13, Mirte12, Upstream11] len {
+                header(4) |dialect, len, frame, at| match at(3) {
+                    None => (3..=3 + SPI_READ_MAX).contains(&len),
+                    Some(n) => n <= SPI_READ_MAX && len == 3 + n,
+                }
+            }
                 { "spi_report" [Spi] } plain {
                     /// Port.
                     port: range(0, 1) "port",
@@ -1324,7 +1337,7 @@ macro_rules! report_table {
                     data: counted("n") "data",
                 };
             /// 14 ENCODER_REPORT.
-            14 ENCODER in [Mirte13, Mirte12]
+            14 ENCODER in [Mirte13, Mirte12] len { 3 }
                 { "encoder_report" [Encoder] } custom {
                     variants {
                         /// 14 (mirte): encoder steps since the last report (never 0).
@@ -1358,7 +1371,23 @@ macro_rules! report_table {
                     }
                 };
             /// 20 SENSOR_REPORT.
-            20 SENSOR in [Mirte13, Mirte12]
+            20 SENSOR in [Mirte13, Mirte12] len {
+                header(4) |dialect, len, frame, at| match at(3) {
+                    // mirte 1.2 reports its one sensor, the VEML6040 (spec §10.1).
+                    None if dialect == Dialect::Mirte12 => len == 11,
+                    Some(t) if dialect == Dialect::Mirte12 => {
+                        t == SensorType::Veml6040.as_u8() && len == 11
+                    }
+                    None => (3..=56).contains(&len),
+                    Some(t) => match SensorType::from_u8(t).and_then(SensorType::data_len) {
+                        None => false,
+                        Some((min, max)) => {
+                            let data = usize::from(len).wrapping_sub(3);
+                            len >= 3 && data >= min && data <= max && (t != 8 || data % 2 == 0)
+                        }
+                    },
+                }
+            }
                 { "sensor_report" [Sensor] } custom {
                     variants {
                         /// 20 (mirte 1.3): a sensor reading.
@@ -1398,7 +1427,7 @@ macro_rules! report_table {
                     }
                 };
             /// 21 SENSOR_MAIN_REPORT.
-            21 SENSOR_MAIN in [Mirte13]
+            21 SENSOR_MAIN in [Mirte13] len { 4 }
                 { "sensor_main_report" [SensorSupported] } custom {
                     variants {
                         /// 21 (mirte 1.3): answer to a sensor check.
@@ -1433,7 +1462,7 @@ macro_rules! report_table {
                     }
                 };
             /// 32 PONG_REPORT (mirte): answer to PING.
-            32 PONG in [Mirte13, Mirte12]
+            32 PONG in [Mirte13, Mirte12] len { 3 }
                 { "pong" [Pong] } plain {
                     /// The PING's counter.
                     counter: u8 "counter",
@@ -1441,7 +1470,7 @@ macro_rules! report_table {
                     boot_id: range(0, 99) "boot_id",
                 };
             /// 33 MODULE_MAIN_REPORT.
-            33 MODULE_MAIN in [Mirte13]
+            33 MODULE_MAIN in [Mirte13] len { 4 }
                 { "module_main_report" [ModuleSupported] } custom {
                     variants {
                         /// 33 (mirte 1.3): answer to a module check.
@@ -1476,7 +1505,7 @@ macro_rules! report_table {
                     }
                 };
             /// 34 MODULE_REPORT.
-            34 MODULE in [Mirte13]
+            34 MODULE in [Mirte13] len { header(5) |dialect, len, frame, at| module_report_len_ok(len, frame) }
                 { "module_report" [Module] } custom {
                     variants {
                         /// 34 (mirte 1.3): a module's report.
@@ -1513,19 +1542,35 @@ macro_rules! report_table {
                     }
                 };
             /// 35 GET_ID_REPORT (mirte 1.3): the saved id (`FF` if never set).
-            35 GET_ID in [Mirte13]
+            35 GET_ID in [Mirte13] len { 2 }
                 { "get_id_report" [Id] } plain {
                     /// The id.
                     id: u8 "id",
                 };
             /// 36 SET_ID_REPORT (mirte 1.3): the id just saved.
-            36 SET_ID in [Mirte13]
+            36 SET_ID in [Mirte13] len { 2 }
                 { "set_id_report" [IdSet] } plain {
                     /// The id.
                     id: u8 "id",
                 };
             /// 37 FEATURE_CHECK (mirte 1.3): answer to FEATURE_CHECK.
-            37 FEATURE_CHECK in [Mirte13]
+            37 FEATURE_CHECK in [Mirte13] len {
+                header(8) |dialect, len, frame, at| match (at(2), at(3)) {
+                    (Some(msg_type), Some(1)) => match feature_extras(msg_type) {
+                        Extras::Counted => match at(7) {
+                            // At most 8 pins follow, as checked once the count is in:
+                            // a length refused then must be refused now (the framing
+                            // answers the same for every longer input).
+                            None => (7..=15).contains(&len),
+                            Some(count) => count <= 8 && usize::from(len) == 7 + usize::from(count),
+                        },
+                        Extras::Len(a, b) => len == 3 + a || len == 3 + b,
+                    },
+                    (Some(_), Some(0)) => len == 3,
+                    (Some(_), Some(_)) => false,
+                    _ => (3..=15).contains(&len),
+                }
+            }
                 { "feature_check" [Feature] } plain {
                     /// The command id asked about.
                     msg_type: u8 "msg_type",
@@ -1536,7 +1581,7 @@ macro_rules! report_table {
                     extras: rest "extras",
                 };
             /// 99 DEBUG_PRINT (mirte): debug print.
-            99 DEBUG_PRINT in [Mirte13, Mirte12]
+            99 DEBUG_PRINT in [Mirte13, Mirte12] len { 4 }
                 { "debug_print" [Debug] } plain {
                     /// Where it came from.
                     id: u8 "id",

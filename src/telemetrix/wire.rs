@@ -63,7 +63,7 @@ super::table::command_table!(command_ids);
 /// The report id constants and the report dialect table, from the report
 /// table.
 macro_rules! report_ids {
-    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+]
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt
         { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
         /// Report ids (Pico → host), mirte firmware 1.3 numbering (spec §5).
         pub mod report_id {
