@@ -4,8 +4,9 @@
 
 use super::command::Command;
 use super::dialect::Dialect;
+use super::kind::bind_hook;
 use super::report::Report;
-use super::wire::{command_id as cid, report_id as rid, MAX_COMMAND_FRAME, MAX_REPORT_FRAME};
+use super::wire::{MAX_COMMAND_FRAME, MAX_REPORT_FRAME};
 use super::InDialect;
 use crate::{Encode, EncodeError};
 
@@ -107,36 +108,59 @@ impl Quirk {
     }
 }
 
-/// The quirk of a command frame the decoder accepted in `dialect`, read
-/// from its bytes.
-pub(crate) fn command_quirk(dialect: Dialect, frame: &[u8]) -> Option<Quirk> {
-    match *frame {
-        [3, cid::MODIFY_REPORTING, 2 | 4, _] if dialect == Dialect::Mirte13 => {
-            Some(Quirk::DigitalReportingPinMinus26)
-        }
-        [3, cid::MODIFY_REPORTING, 1 | 3, pin] if dialect != Dialect::Mirte13 && pin > 4 => {
-            Some(Quirk::AnalogReportingPinNotAdc)
-        }
-        [3, cid::DIGITAL_WRITE, _, value] if value > 1 => Some(Quirk::LevelNotBinary),
-        [len, cid::PWM_WRITE, ..] if len.wrapping_sub(1) % 3 != 0 => Some(Quirk::PwmTrailingBytes),
-        [_, cid::ENCODER_NEW, kind, ..] if !matches!(kind, 1 | 2) => {
-            Some(Quirk::EncoderTypeNot1Or2)
-        }
-        _ => None,
-    }
+/// `command_quirk`, from the command table.
+macro_rules! command_quirks {
+    ($($(#[$m:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
+        $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
+        quirk_fn!(command_quirk "command"; $($n $codec { $($body)* })*);
+    };
 }
 
-/// The quirk of a report frame the decoder accepted in `dialect`, read from
-/// its bytes.
-pub(crate) fn report_quirk(dialect: Dialect, frame: &[u8]) -> Option<Quirk> {
-    match *frame {
-        // MODULE_REPORT, SSD1306 (type 3), display disabled.
-        [5, rid::MODULE, _, 3, sub, 254] if dialect == Dialect::Mirte13 && sub > 3 => {
-            Some(Quirk::EchoedRequestByte)
-        }
-        _ => None,
-    }
+/// `report_quirk`, from the report table.
+macro_rules! report_quirks {
+    ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt
+        { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
+        quirk_fn!(report_quirk "report"; $($n $codec { $($body)* })*);
+    };
 }
+
+/// The quirk of a frame the decoder accepted: the `quirk` rule of its row.
+macro_rules! quirk_fn {
+    ($fn:ident $what:literal; $($n:literal $codec:ident $body:tt)*) => {
+        #[doc = concat!("The quirk of a ", $what, " frame the decoder accepted in `dialect`, read")]
+        /// from its bytes by the `quirk` rule of its table row.
+        pub(crate) fn $fn(dialect: Dialect, frame: &[u8]) -> Option<Quirk> {
+            match *frame.get(1)? {
+                $($n => quirk_rule!(dialect, frame, $codec $body),)*
+                _ => None,
+            }
+        }
+    };
+}
+
+/// A row's `quirk` rule (a `custom` row's optional last piece): a closure of
+/// the dialect and the whole frame; no quirk without one.
+macro_rules! quirk_rule {
+    ($dialect:ident, $frame:ident, custom { variants $vars:tt $($piece:ident $params:tt $body:tt)* }) => {
+        quirk_rule!(@pieces $dialect, $frame, $($piece $params $body)*)
+    };
+    ($dialect:ident, $frame:ident, plain $body:tt) => {
+        None
+    };
+    (@pieces $dialect:ident, $frame:ident, quirk ($($param:ident),*) { $($body:tt)* } $($rest:tt)*) => {{
+        bind_hook!(($($param),*) = ($dialect, $frame));
+        $($body)*
+    }};
+    (@pieces $dialect:ident, $frame:ident, $piece:ident $params:tt $body:tt $($rest:tt)*) => {
+        quirk_rule!(@pieces $dialect, $frame, $($rest)*)
+    };
+    (@pieces $dialect:ident, $frame:ident,) => {
+        None
+    };
+}
+
+super::table::command_table!(command_quirks);
+super::table::report_table!(report_quirks);
 
 /// A message to be encoded even if its frame has a [`Quirk`]: the frame a
 /// real peer sends that the encoder otherwise refuses (`03 04 04 02` in

@@ -661,7 +661,7 @@ macro_rules! command_reader {
 macro_rules! read_row {
     ($fields:ident, $buf:ident, $enum:ident $ctx:tt, $([$($vs:ident)+])? custom {
         variants $vars:tt parse $pp:tt $pb:tt write $wp:tt $wb:tt fields $fp:tt $fb:tt
-        read ($($param:ident),*) { $($body:tt)* }
+        read ($($param:ident),*) { $($body:tt)* } $($hooks:tt)*
     }) => {{
         bind_hook!(($($param),*) = $ctx);
         $($body)*

@@ -232,6 +232,12 @@ macro_rules! command_table {
                             },
                         }
                     }
+                    quirk(dialect, frame) {
+                        match *frame {
+                            [3, _, _, value] if value > 1 => Some(Quirk::LevelNotBinary),
+                            _ => None,
+                        }
+                    }
                 };
             // Up to 9 pins and, as a real host may send, 1 or 2 trailing
             // bytes that the firmware ignores (it takes (LEN - 1) / 3 pins).
@@ -281,6 +287,12 @@ macro_rules! command_table {
                             PwmPins::from_slice(&pins)
                                 .map_err(|_| format!("field `pins` holds {} pins, at most 9", pins.len()))?,
                         )
+                    }
+                    quirk(dialect, frame) {
+                        match *frame {
+                            [len, ..] if len.wrapping_sub(1) % 3 != 0 => Some(Quirk::PwmTrailingBytes),
+                            _ => None,
+                        }
                     }
                 };
             4 MODIFY_REPORTING "modify_reporting" [ModifyReporting] in [Mirte13, Mirte12, Upstream11] len (3, 3)
@@ -347,6 +359,17 @@ macro_rules! command_table {
                             },
                             _ => ModifyReporting::DisableDigital { pin: pin_(f, "pin")? },
                         })
+                    }
+                    quirk(dialect, frame) {
+                        match *frame {
+                            [3, _, 2 | 4, _] if dialect == Dialect::Mirte13 => {
+                                Some(Quirk::DigitalReportingPinMinus26)
+                            }
+                            [3, _, 1 | 3, pin] if dialect != Dialect::Mirte13 && pin > 4 => {
+                                Some(Quirk::AnalogReportingPinNotAdc)
+                            }
+                            _ => None,
+                        }
                     }
                 };
             /// 5 GET_FIRMWARE_VERSION: answered by report 5.
@@ -786,6 +809,12 @@ macro_rules! command_table {
                             } else {
                                 None
                             },
+                        }
+                    }
+                    quirk(dialect, frame) {
+                        match *frame {
+                            [_, _, kind, ..] if !matches!(kind, 1 | 2) => Some(Quirk::EncoderTypeNot1Or2),
+                            _ => None,
                         }
                     }
                 };
@@ -1538,6 +1567,15 @@ macro_rules! report_table {
                         Report::Module {
                             module_num,
                             report: nested(f, "message", move |m| module_report(module_type, m, buf))?,
+                        }
+                    }
+                    quirk(dialect, frame) {
+                        match *frame {
+                            // SSD1306 (type 3), display disabled.
+                            [5, _, _, 3, sub, 254] if dialect == Dialect::Mirte13 && sub > 3 => {
+                                Some(Quirk::EchoedRequestByte)
+                            }
+                            _ => None,
                         }
                     }
                 };
