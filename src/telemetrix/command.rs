@@ -2,7 +2,9 @@
 
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
-use super::kind::{bind_hook, field_type, read_field, write_field, write_row};
+use super::kind::{
+    bind_hook, check_row, field_type, read_field, row_piece, write_field, write_row,
+};
 use super::list::List;
 use super::module::{ModuleNew, MODULE_INIT_MAX};
 use super::quirk::command_quirk;
@@ -44,6 +46,29 @@ macro_rules! command_codec {
             pub const fn id(&self) -> u8 {
                 match self {
                     $($(Command::$v { .. })|+ => $n,)*
+                }
+            }
+
+            /// The encoder's checks of this command in `dialect` beyond its id's
+            /// dialects: its row's `check` piece (a variant's own dialects, the
+            /// spec's maxima of byte fields), or a `plain` row's field maxima.
+            fn check_row(&self, dialect: Dialect) -> Result<(), EncodeError> {
+                match *self {
+                    $($(Command::$v { .. })|+ => {
+                        check_row!(self, dialect, Command, $codec $($p)? { $($body)* })
+                    })*
+                }
+            }
+
+            /// The dialects whose layout this variant has, most recent first
+            /// (its row's `home` piece, or the row's dialects): a frame this
+            /// command encodes to parses back to it in each of them where it
+            /// is valid.
+            pub(crate) const fn home_dialects(&self) -> &'static [Dialect] {
+                match *self {
+                    $($(Command::$v { .. })|+ => {
+                        row_piece!(home (self) { &[$(Dialect::$d),+] }, $codec $($p)? { $($body)* })
+                    })*
                 }
             }
 
@@ -297,8 +322,12 @@ impl<'a> Command<'a> {
         out: &mut [u8],
         even_if_refused: bool,
     ) -> Result<usize, EncodeError> {
-        self.check_dialect(dialect)?;
-        self.check_sizes()?;
+        if !command_known(dialect, self.id()) {
+            return Err(EncodeError::Inconsistent {
+                what: "the command does not exist in this dialect",
+            });
+        }
+        self.check_row(dialect)?;
         let n = self.encoded_len_in(dialect);
         if n > MAX_COMMAND_FRAME {
             return Err(EncodeError::TooLong {
@@ -326,65 +355,6 @@ impl<'a> Command<'a> {
         Ok(n)
     }
 
-    fn check_dialect(&self, dialect: Dialect) -> Result<(), EncodeError> {
-        if !command_known(dialect, self.id()) {
-            return Err(EncodeError::Inconsistent {
-                what: "the command does not exist in this dialect",
-            });
-        }
-        let mirte = dialect.is_mirte();
-        match self {
-            Command::I2cRead { .. } | Command::I2cWrite { .. } if !mirte => {
-                Err(EncodeError::Inconsistent {
-                    what: "upstream firmware takes I2C commands without msg_id",
-                })
-            }
-            Command::I2cReadUpstream { .. } | Command::I2cWriteUpstream { .. } if mirte => {
-                Err(EncodeError::Inconsistent {
-                    what: "mirte firmware takes I2C commands with msg_id",
-                })
-            }
-            Command::PwmWrite(pins) if dialect != Dialect::Mirte13 && pins.len() > 1 => {
-                Err(EncodeError::TooLong {
-                    len: pins.len(),
-                    max: 1,
-                })
-            }
-            Command::SensorNew(s) if s.dialect() != dialect => Err(EncodeError::Inconsistent {
-                what: "SENSOR_NEW has mirte 1.3's layout in mirte 1.3 only, mirte 1.2's in mirte 1.2 only",
-            }),
-            Command::EncoderNew { pulls: Some(_), .. } if dialect != Dialect::Mirte13 => {
-                Err(EncodeError::Inconsistent {
-                    what: "mirte 1.2 firmware has no encoder pull setting",
-                })
-            }
-            Command::EncoderNew { pulls: None, .. } if dialect == Dialect::Mirte13 => {
-                Err(EncodeError::Inconsistent {
-                    what: "mirte 1.3 firmware takes ENCODER_NEW with pulls",
-                })
-            }
-            _ => Ok(()),
-        }
-    }
-
-    /// The per-command maxima of spec §4 for byte fields.
-    fn check_sizes(&self) -> Result<(), EncodeError> {
-        let (len, max) = match self {
-            Command::I2cWrite { data, .. } => (data.len(), 24),
-            Command::I2cWriteUpstream { data, .. } => (data.len(), 25),
-            Command::SpiInit { cs_pins, .. } => (cs_pins.len(), 20),
-            Command::SpiWrite { data, .. } => (data.len(), 27),
-            Command::ModuleData { data, .. } => (data.len(), COMMAND_PAYLOAD_MAX),
-            Command::ModuleNew(m) => (m.init_len(), MODULE_INIT_MAX),
-            _ => return Ok(()),
-        };
-        if len > max {
-            Err(EncodeError::TooLong { len, max })
-        } else {
-            Ok(())
-        }
-    }
-
     /// Write the frame into `out` without checking it; returns its length
     /// (which may exceed `out`, whose bytes past the end are then not
     /// written). The bytes do not depend on the dialect.
@@ -392,25 +362,6 @@ impl<'a> Command<'a> {
         let mut w = Writer::new(out);
         self.write(&mut w);
         w.len()
-    }
-
-    /// The dialects whose layout this variant has, most recent first: a
-    /// frame this command encodes to parses back to it in each of them where
-    /// it is valid.
-    pub(crate) const fn home_dialects(&self) -> &'static [Dialect] {
-        match self {
-            Command::I2cReadUpstream { .. } | Command::I2cWriteUpstream { .. } => {
-                &[Dialect::Upstream11]
-            }
-            Command::I2cRead { .. } | Command::I2cWrite { .. } => {
-                &[Dialect::Mirte13, Dialect::Mirte12]
-            }
-            Command::EncoderNew { pulls: Some(_), .. } => &[Dialect::Mirte13],
-            Command::EncoderNew { pulls: None, .. } => &[Dialect::Mirte12],
-            Command::SensorNew(SensorNew::AddMirte12 { .. }) => &[Dialect::Mirte12],
-            Command::SensorNew(_) => &[Dialect::Mirte13],
-            _ => &Dialect::ALL,
-        }
     }
 
     /// Write the whole frame; `LEN` is filled in once the payload is written.
@@ -452,6 +403,29 @@ pub(crate) fn parse_command(dialect: Dialect, frame: &[u8]) -> Result<Command<'_
     let command = parse_payload(dialect, &mut r)?;
     r.end()?;
     Ok(command)
+}
+
+/// An I2C command's layout in `dialect`: mirte's carries `msg_id`,
+/// upstream's does not.
+fn i2c_layout(mirte_layout: bool, dialect: Dialect) -> Result<(), EncodeError> {
+    match (mirte_layout, dialect.is_mirte()) {
+        (true, false) => Err(EncodeError::Inconsistent {
+            what: "upstream firmware takes I2C commands without msg_id",
+        }),
+        (false, true) => Err(EncodeError::Inconsistent {
+            what: "mirte firmware takes I2C commands with msg_id",
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// A byte list of `len` bytes where the spec allows at most `max`.
+fn at_most(len: usize, max: usize) -> Result<(), EncodeError> {
+    if len > max {
+        Err(EncodeError::TooLong { len, max })
+    } else {
+        Ok(())
+    }
 }
 
 fn port(r: &mut Reader<'_>) -> Result<u8, Error> {

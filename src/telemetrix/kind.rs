@@ -27,7 +27,7 @@ macro_rules! field_type {
 
 /// Read and check one field of a `plain` row.
 macro_rules! read_field {
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, counted_pins($count:literal, $each:literal)) => {{
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, counted_pins($count:literal, $each:literal $(, $max:literal)?)) => {{
         let pins = counted($r, $count, 0)?;
         ensure(pins.iter().all(|&p| p < PIN_COUNT), $cmd, $each)?;
         pins
@@ -44,7 +44,7 @@ macro_rules! read_field {
             None
         }
     };
-    ($r:ident, $cmd:ident, $f:ident, $key:literal, counted($count:literal)) => {
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, counted($count:literal $(, $max:literal)?)) => {
         counted($r, $count, 0)?
     };
     ($r:ident, $cmd:ident, $f:ident, $key:literal, trailing_flag) => {
@@ -173,6 +173,69 @@ macro_rules! write_row {
     };
 }
 
+/// The encoder's checks of a row beyond its id's dialects: a `custom` row's
+/// `check` piece, or the maxima a `plain` row's field kinds give.
+macro_rules! check_row {
+    ($value:ident, $dialect:ident, $enum:ident, custom $body:tt) => {
+        $crate::telemetrix::kind::row_piece!(check ($value, $dialect) { Ok(()) }, custom $body)
+    };
+    ($value:ident, $dialect:ident, $enum:ident, plain $p:ident {}) => {
+        Ok(())
+    };
+    ($value:ident, $dialect:ident, $enum:ident, plain $p:ident {
+        $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)?
+    }) => {{
+        if let $enum::$p { $($f),* } = *$value {
+            $($crate::telemetrix::kind::check_field!($f, $kind $(($($arg)*))?);)*
+        }
+        Ok(())
+    }};
+}
+
+/// The encoder's check of one field of a `plain` row: the most bytes a
+/// byte list may hold, when its kind gives it (`at_most` in scope).
+macro_rules! check_field {
+    ($f:ident, counted_pins($count:literal, $each:literal, $max:literal)) => {
+        at_most($f.len(), $max)?
+    };
+    ($f:ident, counted($count:literal, $max:literal)) => {
+        at_most($f.len(), $max)?
+    };
+    ($f:ident, $kind:ident $($args:tt)?) => {
+        let _ = $f;
+    };
+}
+
+/// A `custom` row's optional piece `check`, `home` or `quirk`, its
+/// parameters bound to the values in `$ctx`, or `$default` for a row
+/// without one (and every `plain` row).
+macro_rules! row_piece {
+    ($name:ident $ctx:tt $default:block, custom { variants $vars:tt $($piece:ident $params:tt $body:tt)* }) => {
+        $crate::telemetrix::kind::row_piece!(@find $name $ctx $default, $($piece $params $body)*)
+    };
+    ($name:ident $ctx:tt $default:block, plain $($row:tt)*) => {
+        $default
+    };
+    (@find check $ctx:tt $default:block, check ($($param:ident),*) { $($body:tt)* } $($rest:tt)*) => {{
+        $crate::telemetrix::kind::bind_hook!(($($param),*) = $ctx);
+        $($body)*
+    }};
+    (@find home $ctx:tt $default:block, home ($($param:ident),*) { $($body:tt)* } $($rest:tt)*) => {{
+        $crate::telemetrix::kind::bind_hook!(($($param),*) = $ctx);
+        $($body)*
+    }};
+    (@find quirk $ctx:tt $default:block, quirk ($($param:ident),*) { $($body:tt)* } $($rest:tt)*) => {{
+        $crate::telemetrix::kind::bind_hook!(($($param),*) = $ctx);
+        $($body)*
+    }};
+    (@find $name:ident $ctx:tt $default:block, $piece:ident $params:tt $body:tt $($rest:tt)*) => {
+        $crate::telemetrix::kind::row_piece!(@find $name $ctx $default, $($rest)*)
+    };
+    (@find $name:ident $ctx:tt $default:block,) => {
+        $default
+    };
+}
+
 /// Bind a `custom` row's hook parameters (the names the row's code uses,
 /// in the order the table's docs give) to the consumer's values: the row's
 /// own identifiers, so that macro hygiene lets its code see them.
@@ -183,4 +246,6 @@ macro_rules! bind_hook {
     };
 }
 
-pub(crate) use {bind_hook, field_type, read_field, write_field, write_row};
+pub(crate) use {
+    bind_hook, check_field, check_row, field_type, read_field, row_piece, write_field, write_row,
+};

@@ -4,7 +4,7 @@
 
 use super::command::Command;
 use super::dialect::Dialect;
-use super::kind::bind_hook;
+use super::kind::row_piece;
 use super::report::Report;
 use super::wire::{MAX_COMMAND_FRAME, MAX_REPORT_FRAME};
 use super::InDialect;
@@ -131,31 +131,10 @@ macro_rules! quirk_fn {
         /// from its bytes by the `quirk` rule of its table row.
         pub(crate) fn $fn(dialect: Dialect, frame: &[u8]) -> Option<Quirk> {
             match *frame.get(1)? {
-                $($n => quirk_rule!(dialect, frame, $codec $body),)*
+                $($n => row_piece!(quirk (dialect, frame) { None }, $codec $body),)*
                 _ => None,
             }
         }
-    };
-}
-
-/// A row's `quirk` rule (a `custom` row's optional last piece): a closure of
-/// the dialect and the whole frame; no quirk without one.
-macro_rules! quirk_rule {
-    ($dialect:ident, $frame:ident, custom { variants $vars:tt $($piece:ident $params:tt $body:tt)* }) => {
-        quirk_rule!(@pieces $dialect, $frame, $($piece $params $body)*)
-    };
-    ($dialect:ident, $frame:ident, plain $body:tt) => {
-        None
-    };
-    (@pieces $dialect:ident, $frame:ident, quirk ($($param:ident),*) { $($body:tt)* } $($rest:tt)*) => {{
-        bind_hook!(($($param),*) = ($dialect, $frame));
-        $($body)*
-    }};
-    (@pieces $dialect:ident, $frame:ident, $piece:ident $params:tt $body:tt $($rest:tt)*) => {
-        quirk_rule!(@pieces $dialect, $frame, $($rest)*)
-    };
-    (@pieces $dialect:ident, $frame:ident,) => {
-        None
     };
 }
 

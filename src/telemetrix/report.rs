@@ -3,7 +3,7 @@
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
 use super::fast;
-use super::kind::{bind_hook, field_type, read_field, write_field, write_row};
+use super::kind::{bind_hook, field_type, read_field, row_piece, write_field, write_row};
 use super::module::{module_report_len_ok, ModuleReport};
 use super::quirk::report_quirk;
 use super::sensor::{SensorReading, SensorType};
@@ -198,17 +198,6 @@ impl Sonar {
             },
         }
     }
-
-    const fn in_dialect(&self, dialect: Dialect) -> bool {
-        matches!(
-            (self, dialect),
-            (
-                Sonar::WithEcho { .. } | Sonar::TrigOnly { .. },
-                Dialect::Mirte13
-            ) | (Sonar::MetresCm { .. }, Dialect::Mirte12)
-                | (Sonar::CmHundredths { .. }, Dialect::Upstream11)
-        )
-    }
 }
 
 /// The `Report` enum, from the report table: a `plain` row's variant is
@@ -270,6 +259,19 @@ macro_rules! report_codec {
                 match self {
                     $($($(Report::$v { .. })|+)|+ => $n,)*
                     Report::Unknown { id, .. } => *id,
+                }
+            }
+
+            /// The dialects whose layout this variant has, most recent first
+            /// (its row's `home` piece, or the row's dialects): a frame this
+            /// report encodes to parses back to it in each of them where it is
+            /// valid (an unknown report: where its id is unknown).
+            pub(crate) const fn home_dialects(&self) -> &'static [Dialect] {
+                match *self {
+                    $($($(Report::$v { .. })|+)|+ => {
+                        row_piece!(home (self) { &[$(Dialect::$d),+] }, $codec { $($body)* })
+                    })*
+                    Report::Unknown { .. } => &Dialect::ALL,
                 }
             }
 
@@ -373,12 +375,9 @@ impl Report<'_> {
     }
 
     fn check_dialect(&self, dialect: Dialect) -> Result<(), EncodeError> {
-        let ok = match self {
-            Report::Unknown { id, .. } => !report_known(dialect, *id),
-            Report::I2cWrite { .. } | Report::I2cRead { .. } => dialect.is_mirte(),
-            Report::I2cWriteFailed { .. } | Report::I2cReadUpstream { .. } => !dialect.is_mirte(),
-            Report::Sonar(s) => s.in_dialect(dialect),
-            other => report_known(dialect, other.id()),
+        let ok = match *self {
+            Report::Unknown { id, .. } => !report_known(dialect, id),
+            _ => self.home_dialects().contains(&dialect),
         };
         if ok {
             Ok(())
@@ -396,24 +395,6 @@ impl Report<'_> {
         let mut w = Writer::new(out);
         self.write(&mut w, Dialect::Mirte13);
         w.len()
-    }
-
-    /// The dialects whose layout this variant has, most recent first: a
-    /// frame this report encodes to parses back to it in each of them where
-    /// it is valid (an unknown report: where its id is unknown).
-    pub(crate) const fn home_dialects(&self) -> &'static [Dialect] {
-        match self {
-            Report::I2cWrite { .. } | Report::I2cRead { .. } | Report::I2cReadFailed { .. } => {
-                &[Dialect::Mirte13, Dialect::Mirte12]
-            }
-            Report::I2cWriteFailed { .. } | Report::I2cReadUpstream { .. } => {
-                &[Dialect::Upstream11]
-            }
-            Report::Sonar(Sonar::WithEcho { .. } | Sonar::TrigOnly { .. }) => &[Dialect::Mirte13],
-            Report::Sonar(Sonar::MetresCm { .. }) => &[Dialect::Mirte12],
-            Report::Sonar(Sonar::CmHundredths { .. }) => &[Dialect::Upstream11],
-            _ => &Dialect::ALL,
-        }
     }
 
     fn write(&self, w: &mut Writer<'_>, dialect: Dialect) {

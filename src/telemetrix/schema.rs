@@ -689,7 +689,7 @@ macro_rules! read_member {
             _ => Some((u16_($fields, $a)?, u16_($fields, $b)?)),
         }
     };
-    ($fields:ident, $buf:ident, $key:literal, counted($count:literal)) => {
+    ($fields:ident, $buf:ident, $key:literal, counted($count:literal $(, $max:literal)?)) => {
         bytes_in($fields, $key, $buf)?
     };
     ($fields:ident, $buf:ident, $key:literal, trailing_flag) => {

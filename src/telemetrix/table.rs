@@ -19,6 +19,9 @@
 //!     write(w) { Command::Variant { field, … } => { /* to the Writer */ } … }
 //!     fields(view, w) { Command::Variant { field, … } => { /* JSON fields */ } … }
 //!     read(f, dialect, buf, raw) { /* JSON members → the message */ }
+//!     check(command, dialect) { /* the encoder's own refusals → Result */ }
+//!     home(command) { /* the variant's dialects → &'static [Dialect] */ }
+//!     quirk(dialect, frame) { /* what is dubious in a frame → Option<Quirk> */ }
 //! }
 //! ```
 //!
@@ -29,10 +32,19 @@
 //! `Writer` or the field visitor `W` and `view` the `CommandView` (what a
 //! capture told about the command); `read` builds the message from the JSON
 //! object `f` (`buf` owns a byte list it borrows, `raw` the wire bytes a
-//! quirk line gives). A report row's `write` also sees the `dialect` and its
-//! `read` the `kind` (the row's `type` name read). Each piece expands where
-//! its consumer's helpers are in scope (`command.rs`, `report.rs`,
-//! `fields.rs`, `schema.rs`); the payload types a row names (`PinMode`,
+//! quirk line gives). The last three are optional: `check` is what the
+//! encoder refuses beyond the row's dialects and what the parser rejects
+//! (a variant in the other dialect family's layout, the spec's maxima of
+//! byte fields: `Ok(())` without it), `home` the dialects whose layout a
+//! variant has (the row's dialects without it), `quirk` what the decoder
+//! accepts but flags (no quirk without it). A report row's `write` also sees
+//! the `dialect`, its `read` the `kind` (the row's `type` name read), and its
+//! `LEN` rule is part of its head: `len { n }` for a fixed layout, or a
+//! closure `len { header(n) |dialect, len, frame, at| … }` of the frame so
+//! far (`at(i)` its byte `i`, if known), which looks at its first `n` bytes
+//! (`header(n)` omitted: `LEN` and id only). Each piece expands where its
+//! consumer's helpers are in scope (`command.rs`, `report.rs`, `fields.rs`,
+//! `schema.rs`, `quirk.rs`); the payload types a row names (`PinMode`,
 //! `SensorNew`, `ModuleReport`, …) are in the files of their own.
 //!
 //! A field kind says how the field is read, checked, written and named:
@@ -46,10 +58,10 @@
 //! | `flag`          | `bool` | one byte, `0` or `1`           | `true`/`false`  |
 //! | `level`         | `bool` | one byte, `0` or `1`           | `0`/`1`         |
 //! | `rgb`           | `Rgb`  | three bytes                    | `r`, `g`, `b`   |
-//! | `counted(name)` | `&[u8]`| a count byte (`name` in errors), then the bytes | array |
+//! | `counted(name[, max])` | `&[u8]`| a count byte (`name` in errors), then the bytes; the encoder refuses more than `max` | array |
 //! | `trailing_flag` | `Option<bool>` | a last `0`/`1` byte, or nothing | `true`/`false`, or absent |
 //! | `nonzero_u32`   | `u32`  | four bytes, big-endian, not 0  | number          |
-//! | `counted_pins(name, each)` | `&[u8]` | as `counted`, each byte a GPIO `< 30` (`each` in errors) | array |
+//! | `counted_pins(name, each[, max])` | `&[u8]` | as `counted`, each byte a GPIO `< 30` (`each` in errors) | array |
 //! | `trailing_u16_pair(a, b)` | `Option<(u16, u16)>` | two last `u16`s, or nothing | `a` and `b`, or absent |
 //! | `array(n)`      | `[u8; n]` | `n` bytes                   | array           |
 //! | `rest`          | `&[u8]`| every byte left                | array           |
@@ -288,6 +300,14 @@ macro_rules! command_table {
                                 .map_err(|_| format!("field `pins` holds {} pins, at most 9", pins.len()))?,
                         )
                     }
+                    check(command, dialect) {
+                        match command {
+                            Command::PwmWrite(pins) if dialect != Dialect::Mirte13 && pins.len() > 1 => {
+                                Err(EncodeError::TooLong { len: pins.len(), max: 1 })
+                            }
+                            _ => Ok(()),
+                        }
+                    }
                     quirk(dialect, frame) {
                         match *frame {
                             [len, ..] if len.wrapping_sub(1) % 3 != 0 => Some(Quirk::PwmTrailingBytes),
@@ -507,6 +527,15 @@ macro_rules! command_table {
                             }
                         }
                     }
+                    check(command, dialect) {
+                        i2c_layout(matches!(command, Command::I2cRead { .. }), dialect)
+                    }
+                    home(command) {
+                        match command {
+                            Command::I2cRead { .. } => &[Dialect::Mirte13, Dialect::Mirte12],
+                            _ => &[Dialect::Upstream11],
+                        }
+                    }
                 };
             12 I2C_WRITE "i2c_write" [I2cWrite, I2cWriteUpstream] in [Mirte13, Mirte12, Upstream11] len { Dialect::Upstream11 => (6, 30), _ => (7, 30) }
                 custom {
@@ -593,6 +622,20 @@ macro_rules! command_table {
                             }
                         }
                     }
+                    check(command, dialect) {
+                        i2c_layout(matches!(command, Command::I2cWrite { .. }), dialect)?;
+                        match command {
+                            Command::I2cWrite { data, .. } => at_most(data.len(), 24),
+                            Command::I2cWriteUpstream { data, .. } => at_most(data.len(), 25),
+                            _ => Ok(()),
+                        }
+                    }
+                    home(command) {
+                        match command {
+                            Command::I2cWrite { .. } => &[Dialect::Mirte13, Dialect::Mirte12],
+                            _ => &[Dialect::Upstream11],
+                        }
+                    }
                 };
             /// 13 SONAR_NEW (`trig == echo`: single-pin sonar). At most 4 are used.
             13 SONAR_NEW "sonar_new" [SonarNew] in [Mirte13, Mirte12, Upstream11] len (3, 3)
@@ -671,7 +714,7 @@ macro_rules! command_table {
                     /// Clock frequency in Hz (≥ 1).
                     freq_hz: nonzero_u32 "freq_hz",
                     /// Chip-select GPIOs (each < 30), at most 20.
-                    cs_pins: counted_pins("cs count", "cs_pin") "cs_pins",
+                    cs_pins: counted_pins("cs count", "cs_pin", 20) "cs_pins",
                 };
             /// 25 SPI_WRITE_BLOCKING.
             25 SPI_WRITE_BLOCKING "spi_write_blocking" [SpiWrite] in [Mirte13, Mirte12, Upstream11] len (3, 30)
@@ -679,7 +722,7 @@ macro_rules! command_table {
                     /// 0 or 1.
                     port: range(0, 1) "port",
                     /// At most 27 bytes.
-                    data: counted("len") "data",
+                    data: counted("len", 27) "data",
                 };
             /// 26 SPI_READ_BLOCKING: answered by report 13.
             26 SPI_READ_BLOCKING "spi_read_blocking" [SpiRead] in [Mirte13, Mirte12, Upstream11] len (4, 4)
@@ -811,6 +854,27 @@ macro_rules! command_table {
                             },
                         }
                     }
+                    check(command, dialect) {
+                        match command {
+                            Command::EncoderNew { pulls: Some(_), .. } if dialect != Dialect::Mirte13 => {
+                                Err(EncodeError::Inconsistent {
+                                    what: "mirte 1.2 firmware has no encoder pull setting",
+                                })
+                            }
+                            Command::EncoderNew { pulls: None, .. } if dialect == Dialect::Mirte13 => {
+                                Err(EncodeError::Inconsistent {
+                                    what: "mirte 1.3 firmware takes ENCODER_NEW with pulls",
+                                })
+                            }
+                            _ => Ok(()),
+                        }
+                    }
+                    home(command) {
+                        match command {
+                            Command::EncoderNew { pulls: Some(_), .. } => &[Dialect::Mirte13],
+                            _ => &[Dialect::Mirte12],
+                        }
+                    }
                     quirk(dialect, frame) {
                         match *frame {
                             [_, _, kind, ..] if !matches!(kind, 1 | 2) => Some(Quirk::EncoderTypeNot1Or2),
@@ -837,6 +901,20 @@ macro_rules! command_table {
                     read(f, dialect, buf, raw) {
                         Command::SensorNew(SensorNew::read_members(f, dialect)?)
                     }
+                    check(command, dialect) {
+                        match command {
+                            Command::SensorNew(s) if s.dialect() != dialect => Err(EncodeError::Inconsistent {
+                                what: "SENSOR_NEW has mirte 1.3's layout in mirte 1.3 only, mirte 1.2's in mirte 1.2 only",
+                            }),
+                            _ => Ok(()),
+                        }
+                    }
+                    home(command) {
+                        match command {
+                            Command::SensorNew(SensorNew::AddMirte12 { .. }) => &[Dialect::Mirte12],
+                            _ => &[Dialect::Mirte13],
+                        }
+                    }
                 };
             /// 32 PING (mirte only): answered by report 32.
             32 PING "ping" [Ping] in [Mirte13, Mirte12] len (2, 2)
@@ -861,6 +939,12 @@ macro_rules! command_table {
                     }
                     read(f, dialect, buf, raw) {
                         Command::ModuleNew(ModuleNew::read_members(f, buf)?)
+                    }
+                    check(command, dialect) {
+                        match command {
+                            Command::ModuleNew(m) => at_most(m.init_len(), MODULE_INIT_MAX),
+                            _ => Ok(()),
+                        }
                     }
                 };
             34 MODULE_DATA "module_data" [ModuleData] in [Mirte13] len (2, 30)
@@ -911,6 +995,12 @@ macro_rules! command_table {
                         };
                         Command::ModuleData { module_num, data }
                     }
+                    check(command, dialect) {
+                        match command {
+                            Command::ModuleData { data, .. } => at_most(data.len(), COMMAND_PAYLOAD_MAX),
+                            _ => Ok(()),
+                        }
+                    }
                 };
             /// 35 GET_ID (mirte 1.3): answered by report 35.
             35 GET_ID "get_id" [GetId] in [Mirte13] len (1, 1)
@@ -946,9 +1036,9 @@ pub(crate) use command_table;
 /// command table: `plain { field: kind "key", … }` (one variant, named by
 /// the row, with the row's docs) or `custom { … }` (its variants and code:
 /// `parse(dialect, r, id)`, `write(w, dialect)`, `fields(view, w)`,
-/// `read(f, dialect, buf, kind)`). A report's `LEN` check is
-/// `report_len_ok`, which looks at a frame's first bytes to end a streamed
-/// frame early.
+/// `read(f, dialect, buf, kind)`, and optionally `home(report)` and
+/// `quirk(dialect, frame)`). Its `len` rule gives `report_len_ok`, which
+/// looks at a frame's first bytes to end a streamed frame early.
 macro_rules! report_table {
     ($callback:ident $(, $($extra:tt)+)?) => {
         $callback! {
@@ -1105,6 +1195,12 @@ macro_rules! report_table {
                             }
                         }
                     }
+                    home(report) {
+                        match report {
+                            Report::I2cWrite { .. } => &[Dialect::Mirte13, Dialect::Mirte12],
+                            _ => &[Dialect::Upstream11],
+                        }
+                    }
                 };
             /// 9 I2C_READ_FAILED (mirte): I2C read NAK.
             9 I2C_READ_FAILED in [Mirte13, Mirte12] len { 4 }
@@ -1205,6 +1301,12 @@ macro_rules! report_table {
                             }
                         }
                     }
+                    home(report) {
+                        match report {
+                            Report::I2cRead { .. } => &[Dialect::Mirte13, Dialect::Mirte12],
+                            _ => &[Dialect::Upstream11],
+                        }
+                    }
                 };
             /// 11 SONAR_DISTANCE.
             11 SONAR in [Mirte13, Mirte12, Upstream11] len { |dialect, len, frame, at| len == 4 || (len == 5 && dialect == Dialect::Mirte13) }
@@ -1290,6 +1392,13 @@ macro_rules! report_table {
                                 hundredths: u8_(f, "hundredths")?,
                             },
                         })
+                    }
+                    home(report) {
+                        match report {
+                            Report::Sonar(Sonar::WithEcho { .. } | Sonar::TrigOnly { .. }) => &[Dialect::Mirte13],
+                            Report::Sonar(Sonar::MetresCm { .. }) => &[Dialect::Mirte12],
+                            _ => &[Dialect::Upstream11],
+                        }
                     }
                 };
             /// 12 DHT_REPORT.
