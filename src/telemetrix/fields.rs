@@ -16,6 +16,7 @@ use super::module::{
 use super::quirk::Quirk;
 use super::report::{Report, Sonar, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
 use super::sensor::{SensorNew, SensorReading, SensorType};
+use super::table::sensor_readings;
 
 /// One field value.
 #[derive(Clone, Copy)]
@@ -334,6 +335,21 @@ macro_rules! visit_field {
     ($w:ident, $f:ident, $key:literal, i16) => {
         $w.i($key, $f)
     };
+    ($w:ident, $f:ident, $key:literal, i8) => {
+        $w.i($key, $f)
+    };
+    ($w:ident, $f:ident, $key:literal, i32) => {
+        $w.i($key, $f)
+    };
+    ($w:ident, $f:ident, $key:literal, f32) => {
+        $w.v($key, V::F32($f))
+    };
+    ($w:ident, $f:ident, $key:literal, f32s $args:tt) => {
+        $w.v($key, V::F32s(&$f))
+    };
+    ($w:ident, $f:ident, $key:literal, i16s $args:tt) => {
+        $w.v($key, V::I16s(&$f))
+    };
     // u8, u16, u16_max, pin, range
     ($w:ident, $f:ident, $key:literal, $kind:ident $($args:tt)?) => {
         $w.u($key, $f)
@@ -538,60 +554,22 @@ impl Visit for ReportView<'_, '_> {
     }
 }
 
-impl Visit for SensorReading {
-    fn visit(&self, o: &mut W<'_>) {
-        match *self {
-            SensorReading::Hx711 { raw } => o.i("raw", raw),
-            SensorReading::Mpu9250 {
-                ref accel,
-                ref gyro,
-                ref mag,
-                ref quat,
-            } => {
-                o.v("accel", V::F32s(accel));
-                o.v("gyro", V::F32s(gyro));
-                o.v("mag", V::F32s(mag));
-                o.v("quat", V::F32s(quat));
-            }
-            SensorReading::Vl53l0x { mm } => o.u("mm", mm),
-            SensorReading::Veml6040 { r, g, b, w } => {
-                o.u("r", r);
-                o.u("g", g);
-                o.u("b", b);
-                o.u("w", w);
-            }
-            SensorReading::Adxl345 { ref accel } => o.v("accel", V::I16s(accel)),
-            SensorReading::Ina226 { volts, amps } => {
-                o.v("volts", V::F32(volts));
-                o.v("amps", V::F32(amps));
-            }
-            SensorReading::Hmc5883l { ref field } => o.v("field", V::F32s(field)),
-            SensorReading::As5600 { ref angles } => o.v("angles", V::U16s(angles)),
-            SensorReading::Mpu6050 {
-                ref accel,
-                ref gyro,
-                temp,
-            } => {
-                o.v("accel", V::I16s(accel));
-                o.v("gyro", V::I16s(gyro));
-                o.i("temp", temp);
-            }
-            SensorReading::Bno055 {
-                ref gyro,
-                ref mag,
-                ref accel,
-                ref quat,
-                temp,
-            } => {
-                o.v("gyro", V::F32s(gyro));
-                o.v("mag", V::F32s(mag));
-                o.v("accel", V::F32s(accel));
-                o.v("quat", V::F32s(quat));
-                o.i("temp", temp);
+/// A sensor reading's fields, from the sensor table.
+macro_rules! sensor_reading_fields {
+    ($($(#[$rm:meta])* $n:literal $t:ident $codec:ident { $($body:tt)* };)*) => {
+        impl Visit for SensorReading {
+            fn visit(&self, o: &mut W<'_>) {
+                match *self {
+                    $(SensorReading::$t { .. } => {
+                        visit_row!(self, o, SensorReading (self), [$t] $codec { $($body)* })
+                    })*
+                }
             }
         }
-    }
+    };
 }
+
+super::table::sensor_table!(sensor_readings, sensor_reading_fields);
 
 impl Visit for ModuleReport<'_> {
     fn visit(&self, o: &mut W<'_>) {

@@ -18,6 +18,11 @@ macro_rules! field_type {
     (u16) => { u16 };
     (u16_max $($args:tt)?) => { u16 };
     (i16) => { i16 };
+    (i8) => { i8 };
+    (i32) => { i32 };
+    (f32) => { f32 };
+    (f32s($n:literal)) => { [f32; $n] };
+    (i16s($n:literal)) => { [i16; $n] };
     (flag) => { bool };
     (level) => { bool };
     (rgb) => { Rgb };
@@ -74,6 +79,29 @@ macro_rules! read_field {
     ($r:ident, $cmd:ident, $f:ident, $key:literal, i16) => {
         $r.i16()?
     };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, i8) => {
+        $r.i8()?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, i32) => {
+        $r.i32()?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, f32) => {
+        $r.f32()?
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, f32s($n:literal)) => {
+        read_field!(@each $r, [0.0; $n], f32)
+    };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, i16s($n:literal)) => {
+        read_field!(@each $r, [0; $n], i16)
+    };
+    // An array, each value read by the reader's method `$read`.
+    (@each $r:ident, $values:expr, $read:ident) => {{
+        let mut values = $values;
+        for value in &mut values {
+            *value = $r.$read()?;
+        }
+        values
+    }};
     ($r:ident, $cmd:ident, $f:ident, $key:literal, pin) => {
         $r.pin($key)?
     };
@@ -136,6 +164,21 @@ macro_rules! write_field {
     };
     ($w:ident, $f:ident, i16) => {
         $w.i16($f)
+    };
+    ($w:ident, $f:ident, i8) => {
+        $w.i8($f)
+    };
+    ($w:ident, $f:ident, i32) => {
+        $w.i32($f)
+    };
+    ($w:ident, $f:ident, f32) => {
+        $w.f32($f)
+    };
+    ($w:ident, $f:ident, f32s $args:tt) => {
+        $f.iter().for_each(|&v| $w.f32(v))
+    };
+    ($w:ident, $f:ident, i16s $args:tt) => {
+        $f.iter().for_each(|&v| $w.i16(v))
     };
     ($w:ident, $f:ident, rgb) => {
         $w.bytes(&[$f.r, $f.g, $f.b])

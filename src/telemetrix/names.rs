@@ -38,7 +38,7 @@ fn lookup(
 }
 
 macro_rules! named {
-    ($ty:ty, $what:literal, $names:expr, $expected:literal, $all:expr) => {
+    ($ty:ty, $what:literal, $names:expr, $expected:expr, $all:expr) => {
         impl $ty {
             /// Every name, in wire-value order.
             pub const NAMES: &'static [&'static str] = &$names;
@@ -77,16 +77,22 @@ named!(
     Dialect::ALL
 );
 
-named!(
-    SensorType,
-    "sensor type",
-    [
-        "gps", "hx711", "mpu9250", "vl53l0x", "veml6040", "adxl345", "ina226", "hmc5883l",
-        "as5600", "mpu6050", "bno055",
-    ],
-    "gps, hx711, mpu9250, vl53l0x, veml6040, adxl345, ina226, hmc5883l, as5600, mpu6050, bno055",
-    SensorType::ALL
-);
+/// `SensorType`'s names, from the sensor table.
+macro_rules! sensor_names {
+    ($($(#[$tm:meta])* $n:literal $t:ident $name:literal
+        $(data $lens:tt $(#[$rm:meta])* $codec:ident { $($body:tt)* })?;)*) => {
+        named!(SensorType, "sensor type", [$($name),*], join_names!($($name),*), SensorType::ALL);
+    };
+}
+
+/// Names joined by `", "`, at compile time.
+macro_rules! join_names {
+    ($first:literal $(, $rest:literal)*) => {
+        concat!($first $(, ", ", $rest)*)
+    };
+}
+
+super::table::sensor_table!(sensor_names);
 
 named!(
     ModuleType,

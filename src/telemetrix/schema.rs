@@ -29,6 +29,7 @@ use super::module::{
 use super::quirk::Quirk;
 use super::report::{Report, Sonar, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
 use super::sensor::{SensorNew, SensorReading, SensorType};
+use super::table::sensor_readings;
 use super::wire::{COMMAND_PAYLOAD_MAX, MAX_REPORT_FRAME, PIN_COUNT};
 use crate::serde_support::{read_f32, read_int, serialize_f32, unknown_type, Fields, Value};
 use crate::Encode;
@@ -717,6 +718,21 @@ macro_rules! read_member {
     ($fields:ident, $buf:ident, $key:literal, i16) => {
         i16_($fields, $key)?
     };
+    ($fields:ident, $buf:ident, $key:literal, i8) => {
+        i8_($fields, $key)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, i32) => {
+        $fields.int($key, i64::from(i32::MIN), i64::from(i32::MAX))? as i32
+    };
+    ($fields:ident, $buf:ident, $key:literal, f32) => {
+        f32_($fields, $key)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, f32s($n:literal)) => {
+        f32s::<$n>($fields, $key)?
+    };
+    ($fields:ident, $buf:ident, $key:literal, i16s($n:literal)) => {
+        i16s::<$n>($fields, $key)?
+    };
     ($fields:ident, $buf:ident, $key:literal, pin) => {
         pin_($fields, $key)?
     };
@@ -933,64 +949,23 @@ fn i16s<const N: usize>(f: &mut Fields<'_>, key: &str) -> Result<[i16; N], Strin
     f.array(key, |v| read_int(v, -32768, 32767).map(|v| v as i16))
 }
 
-fn sensor_reading(sensor_type: SensorType, f: &mut Fields<'_>) -> Result<SensorReading, String> {
-    Ok(match sensor_type {
-        SensorType::Gps => return Err("GPS sends no readings".to_string()),
-        SensorType::Hx711 => SensorReading::Hx711 {
-            raw: f.int("raw", i64::from(i32::MIN), i64::from(i32::MAX))? as i32,
-        },
-        SensorType::Mpu9250 => SensorReading::Mpu9250 {
-            accel: f32s(f, "accel")?,
-            gyro: f32s(f, "gyro")?,
-            mag: f32s(f, "mag")?,
-            quat: f32s(f, "quat")?,
-        },
-        SensorType::Vl53l0x => SensorReading::Vl53l0x { mm: u16_(f, "mm")? },
-        SensorType::Veml6040 => SensorReading::Veml6040 {
-            r: u16_(f, "r")?,
-            g: u16_(f, "g")?,
-            b: u16_(f, "b")?,
-            w: u16_(f, "w")?,
-        },
-        SensorType::Adxl345 => SensorReading::Adxl345 {
-            accel: i16s(f, "accel")?,
-        },
-        SensorType::Ina226 => SensorReading::Ina226 {
-            volts: f32_(f, "volts")?,
-            amps: f32_(f, "amps")?,
-        },
-        SensorType::Hmc5883l => SensorReading::Hmc5883l {
-            field: f32s(f, "field")?,
-        },
-        SensorType::As5600 => {
-            let value = f.value("angles")?;
-            let items = value
-                .as_array()
-                .ok_or_else(|| format!("field `angles` must be an array, found {value}"))?;
-            let mut angles = List::new();
-            for (i, item) in items.iter().enumerate() {
-                let angle =
-                    read_int(item, 0, 65535).map_err(|e| format!("field `angles[{i}]` {e}"))?;
-                angles
-                    .push(angle as u16)
-                    .map_err(|_| format!("field `angles` holds {}, at most 8", items.len()))?;
-            }
-            SensorReading::As5600 { angles }
+/// A sensor reading's members, from the sensor table.
+macro_rules! sensor_reading_reader {
+    ($($(#[$rm:meta])* $n:literal $t:ident $codec:ident { $($body:tt)* };)*) => {
+        fn sensor_reading(sensor_type: SensorType, f: &mut Fields<'_>) -> Result<SensorReading, String> {
+            // `read_member!` takes the buffer the byte-list kinds read into;
+            // no reading has one.
+            let _buf: &mut Vec<u8> = &mut Vec::new();
+            Ok(match sensor_type {
+                $(SensorType::$t => read_row!(f, _buf, SensorReading (f), [$t] $codec { $($body)* }),)*
+                #[allow(unreachable_patterns)]
+                _ => return Err(format!("sensor type `{}` sends no readings", sensor_type.name())),
+            })
         }
-        SensorType::Mpu6050 => SensorReading::Mpu6050 {
-            accel: i16s(f, "accel")?,
-            gyro: i16s(f, "gyro")?,
-            temp: i16_(f, "temp")?,
-        },
-        SensorType::Bno055 => SensorReading::Bno055 {
-            gyro: f32s(f, "gyro")?,
-            mag: f32s(f, "mag")?,
-            accel: f32s(f, "accel")?,
-            quat: f32s(f, "quat")?,
-            temp: i8_(f, "temp")?,
-        },
-    })
+    };
 }
+
+super::table::sensor_table!(sensor_readings, sensor_reading_reader);
 
 fn module_report<'b>(
     module_type: ModuleType,

@@ -1960,3 +1960,216 @@ macro_rules! ssd1306_table {
 }
 
 pub(crate) use ssd1306_table;
+
+/// Hand the sensor rows to `$callback!`, after `$extra` (in brackets) when
+/// given: one row per sensor type (spec §6), its type byte, its
+/// [`SensorType`](super::SensorType) variant with that variant's docs and
+/// its name, then, for a type the firmware sends readings of, `data` with
+/// the length range of its SENSOR_REPORT data and its
+/// [`SensorReading`](super::SensorReading), the variant of the same name:
+/// its docs, then `plain` fields (of the command rows' kinds) or `custom`
+/// code with `parse(r, dialect)`, `write(w, dialect)`, `fields(view, w)`
+/// and `read(f)`.
+macro_rules! sensor_table {
+    ($callback:ident $(, $($extra:tt)+)?) => {
+        $callback! {
+            $([$($extra)+])?
+            /// 0: GPS (not supported by the firmware; no report layout).
+            0 Gps "gps";
+            /// 1: HX711 load cell. Settings `dout, sck`.
+            1 Hx711 "hx711" data (4, 4)
+                /// HX711: raw `i32`.
+                plain {
+                    /// Raw reading.
+                    raw: i32 "raw",
+                };
+            /// 2: MPU9250. Settings `port, addr`.
+            2 Mpu9250 "mpu9250" data (52, 52)
+                /// MPU9250: 13 floats.
+                plain {
+                    /// Acceleration x, y, z.
+                    accel: f32s(3) "accel",
+                    /// Angular rate x, y, z.
+                    gyro: f32s(3) "gyro",
+                    /// Magnetic field x, y, z.
+                    mag: f32s(3) "mag",
+                    /// Orientation quaternion x, y, z, w.
+                    quat: f32s(4) "quat",
+                };
+            /// 3: VL53L0X. Settings `port`.
+            3 Vl53l0x "vl53l0x" data (2, 2)
+                /// VL53L0X: distance.
+                plain {
+                    /// Distance in mm.
+                    mm: u16 "mm",
+                };
+            /// 4: VEML6040 (address 0x10). Settings `port`.
+            4 Veml6040 "veml6040" data (8, 8)
+                /// VEML6040: colour channels.
+                custom {
+                    variants {
+                        Veml6040 {
+                            /// Red.
+                            r: u16,
+                            /// Green.
+                            g: u16,
+                            /// Blue.
+                            b: u16,
+                            /// White.
+                            w: u16,
+                        },
+                    }
+                    // mirte 1.2 sends each colour register low byte first.
+                    parse(r, dialect) {
+                        let mut channel = || match dialect {
+                            Dialect::Mirte12 => r.array().map(u16::from_le_bytes),
+                            _ => r.u16(),
+                        };
+                        SensorReading::Veml6040 { r: channel()?, g: channel()?, b: channel()?, w: channel()? }
+                    }
+                    write(w, dialect) {
+                        SensorReading::Veml6040 { r, g, b, w: white } => {
+                            for v in [r, g, b, white] {
+                                if dialect == Dialect::Mirte12 {
+                                    w.bytes(&v.to_le_bytes());
+                                } else {
+                                    w.u16(v);
+                                }
+                            }
+                        }
+                    }
+                    fields(view, w) {
+                        SensorReading::Veml6040 { r, g, b, w: white } => {
+                            w.u("r", r);
+                            w.u("g", g);
+                            w.u("b", b);
+                            w.u("w", white);
+                        }
+                    }
+                    read(f) {
+                        SensorReading::Veml6040 {
+                            r: u16_(f, "r")?,
+                            g: u16_(f, "g")?,
+                            b: u16_(f, "b")?,
+                            w: u16_(f, "w")?,
+                        }
+                    }
+                };
+            /// 5: ADXL345 (not registered in the firmware). Settings `port`.
+            5 Adxl345 "adxl345" data (6, 6)
+                /// ADXL345 (never sent by the firmware; layout as the spec describes).
+                plain {
+                    /// Acceleration x, y, z.
+                    accel: i16s(3) "accel",
+                };
+            /// 6: INA226. Settings `port, addr` (0x40..=0x4F).
+            6 Ina226 "ina226" data (8, 8)
+                /// INA226: bus voltage and current.
+                plain {
+                    /// Bus voltage in V.
+                    volts: f32 "volts",
+                    /// Current in A.
+                    amps: f32 "amps",
+                };
+            /// 7: HMC5883L. Settings `port`.
+            7 Hmc5883l "hmc5883l" data (12, 12)
+                /// HMC5883L: normalised field.
+                plain {
+                    /// Field x, y, z.
+                    field: f32s(3) "field",
+                };
+            /// 8: AS5600 behind a TCA9548 mux (0x70). Settings `port, channel_mask`.
+            8 As5600 "as5600" data (0, 16)
+                /// AS5600 behind a mux: one angle per channel set in the mask, lowest
+                /// channel first.
+                custom {
+                    variants {
+                        As5600 {
+                            /// Angles 0..=4095.
+                            angles: List<u16, 8>,
+                        },
+                    }
+                    parse(r, dialect) {
+                        let mut angles = List::new();
+                        while r.remaining() > 0 {
+                            let angle = r.u16()?;
+                            ensure(angle <= 4095, r.id(), "angle")?;
+                            angles.push(angle).map_err(|_| r.bad_length())?;
+                        }
+                        SensorReading::As5600 { angles }
+                    }
+                    write(w, dialect) {
+                        SensorReading::As5600 { angles } => angles.iter().for_each(|&a| w.u16(a)),
+                    }
+                    fields(view, w) {
+                        SensorReading::As5600 { angles } => w.v("angles", V::U16s(&angles)),
+                    }
+                    read(f) {
+                        let value = f.value("angles")?;
+                        let items = value
+                            .as_array()
+                            .ok_or_else(|| format!("field `angles` must be an array, found {value}"))?;
+                        let mut angles = List::new();
+                        for (i, item) in items.iter().enumerate() {
+                            let angle = read_int(item, 0, 65535)
+                                .map_err(|e| format!("field `angles[{i}]` {e}"))?;
+                            angles
+                                .push(angle as u16)
+                                .map_err(|_| format!("field `angles` holds {}, at most 8", items.len()))?;
+                        }
+                        SensorReading::As5600 { angles }
+                    }
+                };
+            /// 9: MPU6050. Settings `port, addr`.
+            9 Mpu6050 "mpu6050" data (14, 14)
+                /// MPU6050: raw readings.
+                plain {
+                    /// Acceleration x, y, z.
+                    accel: i16s(3) "accel",
+                    /// Angular rate x, y, z.
+                    gyro: i16s(3) "gyro",
+                    /// Temperature.
+                    temp: i16 "temp",
+                };
+            /// 10: BNO055. Settings `port`.
+            10 Bno055 "bno055" data (53, 53)
+                /// BNO055: 13 floats and a temperature.
+                plain {
+                    /// Angular rate x, y, z.
+                    gyro: f32s(3) "gyro",
+                    /// Magnetic field x, y, z.
+                    mag: f32s(3) "mag",
+                    /// Acceleration x, y, z.
+                    accel: f32s(3) "accel",
+                    /// Orientation quaternion x, y, z, w.
+                    quat: f32s(4) "quat",
+                    /// Temperature in °C.
+                    temp: i8 "temp",
+                };
+        }
+    };
+}
+
+pub(crate) use sensor_table;
+
+/// Hand the sensor rows that have a reading to `$callback!` in the shape
+/// `docs id Variant plain|custom { … };` (the reading's docs and payload).
+macro_rules! sensor_readings {
+    ([$callback:ident] $($rows:tt)*) => {
+        $crate::telemetrix::table::sensor_readings!(@rows $callback [] $($rows)*);
+    };
+    (@rows $cb:ident [$($acc:tt)*] $(#[$tm:meta])* $n:literal $t:ident $name:literal; $($rest:tt)*) => {
+        $crate::telemetrix::table::sensor_readings!(@rows $cb [$($acc)*] $($rest)*);
+    };
+    (@rows $cb:ident [$($acc:tt)*] $(#[$tm:meta])* $n:literal $t:ident $name:literal data $lens:tt
+        $(#[$rm:meta])* $codec:ident { $($body:tt)* }; $($rest:tt)*) => {
+        $crate::telemetrix::table::sensor_readings!(@rows $cb [
+            $($acc)* $(#[$rm])* $n $t $codec { $($body)* };
+        ] $($rest)*);
+    };
+    (@rows $cb:ident [$($acc:tt)*]) => {
+        $cb! { $($acc)* }
+    };
+}
+
+pub(crate) use sensor_readings;
