@@ -50,8 +50,8 @@ KNOWN = {
         "the layout-generic encoder (offset table, optional fields, range checks), memcpy and memclr",
     ),
     "Telemetrix command decoder (Pico side)": (
-        7200,
-        "the command parser (parse_command alone is 5.3 KB: the custom commands' hand-written arms, one error path per checked field); no memcpy since Command's tag is word-sized",
+        7050,
+        "the command parser (parse_command alone is 5.1 KB: the custom rows' parse code, one error path per checked field); no memcpy since Command's tag is word-sized",
     ),
     "Pixy2 request decoder (camera side)": (
         6200,

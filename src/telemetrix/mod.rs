@@ -256,21 +256,22 @@
 //!    `tests/schema_telemetrix.rs` (frame ↔ JSON line).
 //!
 //! A command whose layout depends on its content or its dialect is a
-//! `custom` row: the row carries its variants and its code, each piece with
-//! the names it works on (`parse(dialect, r, id)`, `write(w)`,
-//! `fields(view, w)`, `read(f, dialect, buf, raw)`; the table's module docs
-//! say what each is), so that it too is one declaration. Reports have a
-//! table of their own in the same file (`report_table!`), with rows of the
-//! same shape: the id, its [`report_id`] constant, the dialects, the `type`
-//! names with their variants and the payload (`plain` or `custom`). It
-//! gives the report ids, the report dialect table, [`Report::NAMES`],
-//! [`Report::name`], [`Report::id`], the [`Report`] enum, encode, parse and
-//! the serde fields and reader; the `LEN` check is `report_len_ok`, and the
-//! streamed fast path `fast.rs` (a shortcut its tests hold to the table's
-//! parse). The field kinds' Rust types, reads and writes are in `kind.rs`,
-//! shared by all tables. The MODULE_DATA messages that start with a subtype
+//! `custom` row, and it too is one declaration: the row carries its
+//! variants and its code, each piece naming the values it works on as a
+//! closure names its parameters (`parse(dialect, r, id)`, `write(w)`,
+//! `fields(view, w)`, `read(f, dialect, buf, raw)`, and where needed
+//! `check`, `home` and `quirk`; the module docs of `table.rs` say what each
+//! is, and docs/telemetrix.md shows a whole row). Reports have a table of
+//! their own in the same file (`report_table!`), with rows of the same
+//! shape and each report's `LEN` rule: the report ids, the dialect table,
+//! [`Report::NAMES`], [`Report::name`], [`Report::id`], the [`Report`]
+//! enum, encode, parse, the `LEN` check, the serde fields and reader come
+//! from it; the streamed fast path (`fast.rs`) is a shortcut its tests hold
+//! to the table's parse. The MODULE_DATA messages that start with a subtype
 //! byte ([`HiwonderCommand`], [`Ssd1306Command`]) have a table per module
-//! type in the same file, one row per subtype.
+//! type, the sensors one (`sensor_table!`: [`SensorType`] and
+//! [`SensorReading`]), all in the same file; the field kinds' Rust types,
+//! reads and writes are in `kind.rs`, shared by all tables.
 
 mod buf;
 mod command;
