@@ -428,18 +428,6 @@ fn at_most(len: usize, max: usize) -> Result<(), EncodeError> {
     }
 }
 
-fn port(r: &mut Reader<'_>) -> Result<u8, Error> {
-    let port = r.u8()?;
-    ensure(port <= 1, r.id(), "port")?;
-    Ok(port)
-}
-
-fn i2c_addr(r: &mut Reader<'_>) -> Result<u8, Error> {
-    let addr = r.u8()?;
-    ensure(addr <= 0x7f, r.id(), "addr")?;
-    Ok(addr)
-}
-
 fn rgb(r: &mut Reader<'_>) -> Result<Rgb, Error> {
     let [r_, g, b] = r.array()?;
     Ok(Rgb { r: r_, g, b })

@@ -200,7 +200,7 @@ impl<'a> ModuleNew<'a> {
                 })?;
                 let init = match module_type {
                     ModuleType::Pca9685 => {
-                        let port = port(r)?;
+                        let port = r.port()?;
                         let config = if r.remaining() > 0 {
                             let addr = r.u8()?;
                             ensure(addr <= 0x7f, id, "addr")?;
@@ -214,7 +214,7 @@ impl<'a> ModuleNew<'a> {
                         ModuleInit::Pca9685 { port, config }
                     }
                     ModuleType::HiwonderServo => {
-                        let uart = port(r)?;
+                        let uart = r.port()?;
                         let (rx, tx) = (r.pin("rx")?, r.pin("tx")?);
                         let count = r.u8()?;
                         ModuleInit::HiwonderServo {
@@ -230,7 +230,7 @@ impl<'a> ModuleNew<'a> {
                         wait_s: r.u8()?,
                     },
                     ModuleType::Ssd1306 => {
-                        let port = port(r)?;
+                        let port = r.port()?;
                         let addr = if r.remaining() > 0 {
                             let addr = r.u8()?;
                             ensure(addr <= 0x7f, id, "addr")?;
@@ -249,12 +249,6 @@ impl<'a> ModuleNew<'a> {
             }),
         }
     }
-}
-
-fn port(r: &mut Reader<'_>) -> Result<u8, Error> {
-    let port = r.u8()?;
-    ensure(port <= 1, r.id(), "port")?;
-    Ok(port)
 }
 
 /// The data of a MODULE_DATA command for one kind of module.

@@ -463,18 +463,6 @@ pub(super) fn parse_report_full(
     Ok(report)
 }
 
-fn port(r: &mut Reader<'_>) -> Result<u8, Error> {
-    let port = r.u8()?;
-    ensure(port <= 1, r.id(), "port")?;
-    Ok(port)
-}
-
-fn i2c_addr(r: &mut Reader<'_>) -> Result<u8, Error> {
-    let addr = r.u8()?;
-    ensure(addr <= 0x7f, r.id(), "addr")?;
-    Ok(addr)
-}
-
 fn sonar_cm(r: &mut Reader<'_>) -> Result<u16, Error> {
     let cm = r.u16()?;
     let ok = cm < SONAR_CM_LIMIT || (SONAR_NO_ECHO..=SONAR_STALE).contains(&cm);

@@ -464,7 +464,7 @@ macro_rules! command_table {
                         },
                     }
                     parse(dialect, r, cmd) {
-                        let (port, addr) = (port(r)?, i2c_addr(r)?);
+                        let (port, addr) = (r.port()?, r.i2c_addr()?);
                         if dialect.is_mirte() {
                             let (msg_id, reg) = (r.u8()?, r.u8()?);
                             let len = r.u8()?;
@@ -566,7 +566,7 @@ macro_rules! command_table {
                         },
                     }
                     parse(dialect, r, cmd) {
-                        let (port, addr) = (port(r)?, i2c_addr(r)?);
+                        let (port, addr) = (r.port()?, r.i2c_addr()?);
                         let msg_id = if dialect.is_mirte() { Some(r.u8()?) } else { None };
                         let n = r.u8()?;
                         ensure(n >= 1, cmd, "len")?;
@@ -1159,9 +1159,9 @@ macro_rules! report_table {
                     }
                     parse(dialect, r, rid) {
                         if dialect.is_mirte() {
-                            Report::I2cWrite { port: port(r)?, msg_id: r.u8()?, result: r.i8()? }
+                            Report::I2cWrite { port: r.port()?, msg_id: r.u8()?, result: r.i8()? }
                         } else {
-                            Report::I2cWriteFailed { port: port(r)?, addr: i2c_addr(r)?, stale: r.u8()? }
+                            Report::I2cWriteFailed { port: r.port()?, addr: r.i2c_addr()?, stale: r.u8()? }
                         }
                     }
                     write(w, dialect) {
@@ -1249,12 +1249,12 @@ macro_rules! report_table {
                     }
                     parse(dialect, r, rid) {
                         if dialect.is_mirte() {
-                            let (port, msg_id, reg) = (port(r)?, r.u8()?, r.u8()?);
+                            let (port, msg_id, reg) = (r.port()?, r.u8()?, r.u8()?);
                             let n = r.u8()?;
                             ensure(r.u8()? == 0, rid, "pad")?;
                             Report::I2cRead { port, msg_id, reg, data: r.take(usize::from(n))? }
                         } else {
-                            let (port, addr, reg) = (port(r)?, i2c_addr(r)?, r.u8()?);
+                            let (port, addr, reg) = (r.port()?, r.i2c_addr()?, r.u8()?);
                             let n = r.u8()?;
                             Report::I2cReadUpstream { port, addr, reg, data: r.take(usize::from(n))? }
                         }

@@ -195,6 +195,20 @@ impl<'a> Reader<'a> {
         }
     }
 
+    /// An I2C or UART port: 0 or 1.
+    pub(crate) fn port(&mut self) -> Result<u8, Error> {
+        let port = self.u8()?;
+        super::error::ensure(port <= 1, self.id, "port")?;
+        Ok(port)
+    }
+
+    /// A 7-bit I2C address.
+    pub(crate) fn i2c_addr(&mut self) -> Result<u8, Error> {
+        let addr = self.u8()?;
+        super::error::ensure(addr <= 0x7f, self.id, "addr")?;
+        Ok(addr)
+    }
+
     /// A GPIO number, which must be below 30.
     pub(crate) fn pin(&mut self, field: &'static str) -> Result<u8, Error> {
         let pin = self.u8()?;
