@@ -81,8 +81,12 @@
 //! `macro_rules!` table rather than a generator: it needs no build script, no
 //! checked-in output to keep current and no extra CI step, and the rows are
 //! read by the compiler itself, so a typo is a compile error at the row.
-//! What it costs: `rustfmt` does not format the code inside a macro's
-//! definition, so a `custom` row's code is formatted by hand. The wire
+//! What it costs: `rustfmt` formats little of the code inside a macro's
+//! definition and `clippy` looks at little of what a macro expands, so a
+//! `custom` row's code is kept to their style by hand; and a `write` or
+//! `fields` piece that leaves out one of its row's variants compiles (the
+//! consumer's `match` has a catch-all arm), so the golden vectors and the
+//! schema tests, which hold every variant, are what catch it. The wire
 //! layouts stay checked against the protocol spec by the tests (golden
 //! vectors in `tests/telemetrix.rs`), not by the table.
 //!
@@ -168,7 +172,9 @@ macro_rules! command_table {
                             w.u("pin", pin);
                             w.s("mode", mode.name());
                             match mode {
-                                PinMode::DigitalInput { report, .. } => w.flag("report_enable", report),
+                                PinMode::DigitalInput { report, .. } => {
+                                    w.flag("report_enable", report)
+                                }
                                 PinMode::AnalogInput { differential, report } => {
                                     w.u("differential", differential);
                                     w.flag("report_enable", report);
@@ -297,12 +303,16 @@ macro_rules! command_table {
                         })?;
                         Command::PwmWrite(
                             PwmPins::from_slice(&pins)
-                                .map_err(|_| format!("field `pins` holds {} pins, at most 9", pins.len()))?,
+                                .map_err(|_| {
+                                    format!("field `pins` holds {} pins, at most 9", pins.len())
+                                })?,
                         )
                     }
                     check(command, dialect) {
                         match command {
-                            Command::PwmWrite(pins) if dialect != Dialect::Mirte13 && pins.len() > 1 => {
+                            Command::PwmWrite(pins)
+                                if dialect != Dialect::Mirte13 && pins.len() > 1 =>
+                            {
                                 Err(EncodeError::TooLong { len: pins.len(), max: 1 })
                             }
                             _ => Ok(()),
@@ -310,7 +320,9 @@ macro_rules! command_table {
                     }
                     quirk(dialect, frame) {
                         match *frame {
-                            [len, ..] if len.wrapping_sub(1) % 3 != 0 => Some(Quirk::PwmTrailingBytes),
+                            [len, ..] if len.wrapping_sub(1) % 3 != 0 => {
+                                Some(Quirk::PwmTrailingBytes)
+                            }
                             _ => None,
                         }
                     }
@@ -331,7 +343,8 @@ macro_rules! command_table {
                         // Mirte 1.2's and upstream 1.1's clients send an analog pin's
                         // GPIO number (26..=30) unchecked where their firmware takes an
                         // ADC number: accepted as sent, and flagged as a quirk.
-                        let analog_ok = analog_pin_ok(Dialect::Mirte13, pin) || analog_pin_ok(dialect, pin);
+                        let analog_ok =
+                            analog_pin_ok(Dialect::Mirte13, pin) || analog_pin_ok(dialect, pin);
                         Command::ModifyReporting(match kind {
                             0 if pin == 0 => ModifyReporting::DisableAll,
                             1 if analog_ok => ModifyReporting::EnableAnalog { pin },
@@ -856,12 +869,16 @@ macro_rules! command_table {
                     }
                     check(command, dialect) {
                         match command {
-                            Command::EncoderNew { pulls: Some(_), .. } if dialect != Dialect::Mirte13 => {
+                            Command::EncoderNew { pulls: Some(_), .. }
+                                if dialect != Dialect::Mirte13 =>
+                            {
                                 Err(EncodeError::Inconsistent {
                                     what: "mirte 1.2 firmware has no encoder pull setting",
                                 })
                             }
-                            Command::EncoderNew { pulls: None, .. } if dialect == Dialect::Mirte13 => {
+                            Command::EncoderNew { pulls: None, .. }
+                                if dialect == Dialect::Mirte13 =>
+                            {
                                 Err(EncodeError::Inconsistent {
                                     what: "mirte 1.3 firmware takes ENCODER_NEW with pulls",
                                 })
@@ -877,7 +894,9 @@ macro_rules! command_table {
                     }
                     quirk(dialect, frame) {
                         match *frame {
-                            [_, _, kind, ..] if !matches!(kind, 1 | 2) => Some(Quirk::EncoderTypeNot1Or2),
+                            [_, _, kind, ..] if !matches!(kind, 1 | 2) => {
+                                Some(Quirk::EncoderTypeNot1Or2)
+                            }
                             _ => None,
                         }
                     }
@@ -903,9 +922,12 @@ macro_rules! command_table {
                     }
                     check(command, dialect) {
                         match command {
-                            Command::SensorNew(s) if s.dialect() != dialect => Err(EncodeError::Inconsistent {
-                                what: "SENSOR_NEW has mirte 1.3's layout in mirte 1.3 only, mirte 1.2's in mirte 1.2 only",
-                            }),
+                            Command::SensorNew(s) if s.dialect() != dialect => {
+                                Err(EncodeError::Inconsistent {
+                                    what: "SENSOR_NEW has mirte 1.3's layout in mirte 1.3 only, \
+                                           mirte 1.2's in mirte 1.2 only",
+                                })
+                            }
                             _ => Ok(()),
                         }
                     }
@@ -974,7 +996,10 @@ macro_rules! command_table {
                     fields(view, w) {
                         Command::ModuleData { module_num, data } => {
                             w.u("module_num", module_num);
-                            match view.module_type.and_then(|t| ModuleData::parse(t, data).map(|m| (t, m))) {
+                            let typed = view
+                                .module_type
+                                .and_then(|t| ModuleData::parse(t, data).map(|m| (t, m)));
+                            match typed {
                                 Some((module_type, message)) => {
                                     w.s("module_type", module_type.name());
                                     w.obj("message", &message);
@@ -997,7 +1022,9 @@ macro_rules! command_table {
                     }
                     check(command, dialect) {
                         match command {
-                            Command::ModuleData { data, .. } => at_most(data.len(), COMMAND_PAYLOAD_MAX),
+                            Command::ModuleData { data, .. } => {
+                                at_most(data.len(), COMMAND_PAYLOAD_MAX)
+                            }
                             _ => Ok(()),
                         }
                     }
@@ -1098,7 +1125,8 @@ macro_rules! report_table {
                         let pin = r.u8()?;
                         // mirte 1.3 builds before the GPIO renumbering still send ADC
                         // numbers, and the version was not bumped.
-                        let ok = analog_pin_ok(dialect, pin) || analog_pin_ok(Dialect::Mirte12, pin);
+                        let ok = analog_pin_ok(dialect, pin)
+                            || analog_pin_ok(Dialect::Mirte12, pin);
                         ensure(ok, rid, "pin")?;
                         let value = r.u16()?;
                         ensure(value <= 4095, rid, "value")?;
@@ -1117,7 +1145,10 @@ macro_rules! report_table {
                         }
                     }
                     read(f, dialect, buf, kind) {
-                        Report::Analog { pin: u8_(f, "pin")?, value: f.int("value", 0, 4095)? as u16 }
+                        Report::Analog {
+                            pin: u8_(f, "pin")?,
+                            value: f.int("value", 0, 4095)? as u16,
+                        }
                     }
                 };
             /// 5 FIRMWARE_REPORT: firmware version (mirte 1.3 sends 1.3).
@@ -1161,7 +1192,11 @@ macro_rules! report_table {
                         if dialect.is_mirte() {
                             Report::I2cWrite { port: r.port()?, msg_id: r.u8()?, result: r.i8()? }
                         } else {
-                            Report::I2cWriteFailed { port: r.port()?, addr: r.i2c_addr()?, stale: r.u8()? }
+                            Report::I2cWriteFailed {
+                                port: r.port()?,
+                                addr: r.i2c_addr()?,
+                                stale: r.u8()?,
+                            }
                         }
                     }
                     write(w, dialect) {
@@ -1169,7 +1204,9 @@ macro_rules! report_table {
                             w.bytes(&[port, msg_id]);
                             w.i8(result);
                         }
-                        Report::I2cWriteFailed { port, addr, stale } => w.bytes(&[port, addr, stale]),
+                        Report::I2cWriteFailed { port, addr, stale } => {
+                            w.bytes(&[port, addr, stale])
+                        }
                     }
                     fields(view, w) {
                         Report::I2cWrite { port, msg_id, result } => {
@@ -1186,7 +1223,11 @@ macro_rules! report_table {
                     read(f, dialect, buf, kind) {
                         let port = ranged(f, "port", 0, 1)?;
                         if kind == "i2c_write_report" {
-                            Report::I2cWrite { port, msg_id: u8_(f, "msg_id")?, result: i8_(f, "result")? }
+                            Report::I2cWrite {
+                                port,
+                                msg_id: u8_(f, "msg_id")?,
+                                result: i8_(f, "result")?,
+                            }
                         } else {
                             Report::I2cWriteFailed {
                                 port,
@@ -1256,7 +1297,8 @@ macro_rules! report_table {
                         } else {
                             let (port, addr, reg) = (r.port()?, r.i2c_addr()?, r.u8()?);
                             let n = r.u8()?;
-                            Report::I2cReadUpstream { port, addr, reg, data: r.take(usize::from(n))? }
+                            let data = r.take(usize::from(n))?;
+                            Report::I2cReadUpstream { port, addr, reg, data }
                         }
                     }
                     write(w, dialect) {
@@ -1376,7 +1418,11 @@ macro_rules! report_table {
                             Dialect::Mirte13 => {
                                 let trig = pin_(f, "trig")?;
                                 if f.has("echo") {
-                                    Sonar::WithEcho { trig, echo: pin_(f, "echo")?, cm: sonar_cm(f)? }
+                                    Sonar::WithEcho {
+                                        trig,
+                                        echo: pin_(f, "echo")?,
+                                        cm: sonar_cm(f)?,
+                                    }
                                 } else {
                                     Sonar::TrigOnly { trig, cm: sonar_cm(f)? }
                                 }
@@ -1395,7 +1441,9 @@ macro_rules! report_table {
                     }
                     home(report) {
                         match report {
-                            Report::Sonar(Sonar::WithEcho { .. } | Sonar::TrigOnly { .. }) => &[Dialect::Mirte13],
+                            Report::Sonar(Sonar::WithEcho { .. } | Sonar::TrigOnly { .. }) => {
+                                &[Dialect::Mirte13]
+                            }
                             Report::Sonar(Sonar::MetresCm { .. }) => &[Dialect::Mirte12],
                             _ => &[Dialect::Upstream11],
                         }
@@ -1427,7 +1475,8 @@ macro_rules! report_table {
                         ensure(humidity_hundredths < 100, rid, "humidity_hundredths")?;
                         let temp = r.i8()?;
                         let temp_hundredths = r.i8()?;
-                        let same_sign = !(temp > 0 && temp_hundredths < 0 || temp < 0 && temp_hundredths > 0);
+                        let same_sign = !(temp > 0 && temp_hundredths < 0
+                            || temp < 0 && temp_hundredths > 0);
                         ensure(
                             (-99..=99).contains(&temp_hundredths) && same_sign,
                             rid,
@@ -1436,14 +1485,26 @@ macro_rules! report_table {
                         Report::Dht { pin, humidity, humidity_hundredths, temp, temp_hundredths }
                     }
                     write(w, dialect) {
-                        Report::Dht { pin, humidity, humidity_hundredths, temp, temp_hundredths } => {
+                        Report::Dht {
+                            pin,
+                            humidity,
+                            humidity_hundredths,
+                            temp,
+                            temp_hundredths,
+                        } => {
                             w.bytes(&[pin, humidity, humidity_hundredths]);
                             w.i8(temp);
                             w.i8(temp_hundredths);
                         }
                     }
                     fields(view, w) {
-                        Report::Dht { pin, humidity, humidity_hundredths, temp, temp_hundredths } => {
+                        Report::Dht {
+                            pin,
+                            humidity,
+                            humidity_hundredths,
+                            temp,
+                            temp_hundredths,
+                        } => {
                             w.u("pin", pin);
                             w.u("hum_int", humidity);
                             w.u("hum_hundredths", humidity_hundredths);
@@ -1540,7 +1601,10 @@ macro_rules! report_table {
                         let sensor_num = r.u8()?;
                         let sensor_type = SensorType::from_u8(r.u8()?)
                             .ok_or(Error::OutOfRange { id: rid, field: "sensor_type" })?;
-                        Report::Sensor { sensor_num, reading: SensorReading::parse(r, sensor_type, dialect)? }
+                        Report::Sensor {
+                            sensor_num,
+                            reading: SensorReading::parse(r, sensor_type, dialect)?,
+                        }
                     }
                     write(w, dialect) {
                         Report::Sensor { sensor_num, reading } => {
@@ -1578,7 +1642,10 @@ macro_rules! report_table {
                     }
                     parse(dialect, r, rid) {
                         ensure(r.u8()? == 0, rid, "subtype")?;
-                        Report::SensorSupported { sensor_type: r.u8()?, supported: r.flag("supported")? }
+                        Report::SensorSupported {
+                            sensor_type: r.u8()?,
+                            supported: r.flag("supported")?,
+                        }
                     }
                     write(w, dialect) {
                         Report::SensorSupported { sensor_type, supported } => {
@@ -1621,7 +1688,10 @@ macro_rules! report_table {
                     }
                     parse(dialect, r, rid) {
                         ensure(r.u8()? == 0, rid, "subtype")?;
-                        Report::ModuleSupported { module_type: r.u8()?, supported: r.flag("supported")? }
+                        Report::ModuleSupported {
+                            module_type: r.u8()?,
+                            supported: r.flag("supported")?,
+                        }
                     }
                     write(w, dialect) {
                         Report::ModuleSupported { module_type, supported } => {
@@ -1675,7 +1745,9 @@ macro_rules! report_table {
                         let module_type = module_type(f)?;
                         Report::Module {
                             module_num,
-                            report: nested(f, "message", move |m| module_report(module_type, m, buf))?,
+                            report: nested(f, "message", move |m| {
+                                module_report(module_type, m, buf)
+                            })?,
                         }
                     }
                     quirk(dialect, frame) {
@@ -1811,7 +1883,8 @@ macro_rules! hiwonder_table {
                 parse(r, id) {
                     let count = r.u8()?;
                     let enabled = r.flag("enabled")?;
-                    let servos = List::from_slice(r.take(usize::from(count))?).map_err(|_| r.bad_length())?;
+                    let servos = List::from_slice(r.take(usize::from(count))?)
+                        .map_err(|_| r.bad_length())?;
                     HiwonderCommand::Enable { enabled, servos }
                 }
                 write(w) {
@@ -1914,7 +1987,9 @@ macro_rules! ssd1306_table {
                 parse(r, id) {
                     let n = r.u8()?;
                     ensure(n <= 26, id, "len")?;
-                    Ssd1306Command::Text(List::from_slice(r.take(usize::from(n))?).map_err(|_| r.bad_length())?)
+                    let text = List::from_slice(r.take(usize::from(n))?)
+                        .map_err(|_| r.bad_length())?;
+                    Ssd1306Command::Text(text)
                 }
                 write(w) {
                     Ssd1306Command::Text(text) => {
@@ -1936,11 +2011,14 @@ macro_rules! ssd1306_table {
                         .map(u8::try_from)
                         .collect::<Result<Vec<u8>, _>>()
                         .map_err(|_| {
-                            format!("field `text` must hold characters U+0000..=U+00FF only, found {value}")
+                            let latin1 = "characters U+0000..=U+00FF only";
+                            format!("field `text` must hold {latin1}, found {value}")
                         })?;
                     Ssd1306Command::Text(
                         List::from_slice(&bytes)
-                            .map_err(|_| format!("field `text` holds {} bytes, at most 26", bytes.len()))?,
+                            .map_err(|_| {
+                                format!("field `text` holds {} bytes, at most 26", bytes.len())
+                            })?,
                     )
                 }
             };
@@ -2025,7 +2103,12 @@ macro_rules! sensor_table {
                             Dialect::Mirte12 => r.array().map(u16::from_le_bytes),
                             _ => r.u16(),
                         };
-                        SensorReading::Veml6040 { r: channel()?, g: channel()?, b: channel()?, w: channel()? }
+                        SensorReading::Veml6040 {
+                            r: channel()?,
+                            g: channel()?,
+                            b: channel()?,
+                            w: channel()?,
+                        }
                     }
                     write(w, dialect) {
                         SensorReading::Veml6040 { r, g, b, w: white } => {
@@ -2108,14 +2191,18 @@ macro_rules! sensor_table {
                         let value = f.value("angles")?;
                         let items = value
                             .as_array()
-                            .ok_or_else(|| format!("field `angles` must be an array, found {value}"))?;
+                            .ok_or_else(|| {
+                                format!("field `angles` must be an array, found {value}")
+                            })?;
                         let mut angles = List::new();
                         for (i, item) in items.iter().enumerate() {
                             let angle = read_int(item, 0, 65535)
                                 .map_err(|e| format!("field `angles[{i}]` {e}"))?;
                             angles
                                 .push(angle as u16)
-                                .map_err(|_| format!("field `angles` holds {}, at most 8", items.len()))?;
+                                .map_err(|_| {
+                                    format!("field `angles` holds {}, at most 8", items.len())
+                                })?;
                         }
                         SensorReading::As5600 { angles }
                     }
@@ -2158,7 +2245,8 @@ macro_rules! sensor_readings {
     ([$callback:ident] $($rows:tt)*) => {
         $crate::telemetrix::table::sensor_readings!(@rows $callback [] $($rows)*);
     };
-    (@rows $cb:ident [$($acc:tt)*] $(#[$tm:meta])* $n:literal $t:ident $name:literal; $($rest:tt)*) => {
+    (@rows $cb:ident [$($acc:tt)*]
+        $(#[$tm:meta])* $n:literal $t:ident $name:literal; $($rest:tt)*) => {
         $crate::telemetrix::table::sensor_readings!(@rows $cb [$($acc)*] $($rest)*);
     };
     (@rows $cb:ident [$($acc:tt)*] $(#[$tm:meta])* $n:literal $t:ident $name:literal data $lens:tt
