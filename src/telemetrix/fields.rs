@@ -6,7 +6,7 @@ use core::fmt;
 
 use super::buf::{CommandBuf, Message, MessageBuf, ReportBuf};
 use super::command::{Command, ModifyReporting, PinMode, PwmPin, Rgb};
-use super::kind::bind_hook;
+use super::kind::{bind_hook, section_piece};
 use super::list::List;
 use super::module::{
     HiwonderCommand, ModuleCommand, ModuleInit, ModuleNew, ModuleReport, ModuleType,
@@ -433,49 +433,37 @@ impl Visit for ModuleNew<'_> {
                 w.s("subtype", "add");
                 w.u("module_num", module_num);
                 w.s("module_type", init.module_type().name());
-                w.obj("init", &FnVisit(|o: &mut W<'_>| module_init(&init, o)));
+                w.obj("init", &init);
             }
         }
     }
 }
 
-fn module_init(init: &ModuleInit<'_>, o: &mut W<'_>) {
-    match *init {
-        ModuleInit::Pca9685 { port, config } => {
-            o.u("port", port);
-            if let Some(config) = config {
-                o.u("addr", config.addr);
-                o.u("freq_hz", config.freq_hz);
+/// The JSON fields of a module's init and reports, from the module table.
+macro_rules! module_fields {
+    ($($(#[$tm:meta])* $n:literal $t:ident $name:literal
+        init $init:tt $(reports [$($rv:ident),+ $(,)?] $reports:tt)?;)*) => {
+        impl Visit for ModuleInit<'_> {
+            fn visit(&self, o: &mut W<'_>) {
+                match *self {
+                    $(ModuleInit::$t { .. } => section_piece!(fields (self, o) (*self), $init),)*
+                }
             }
         }
-        ModuleInit::HiwonderServo {
-            uart,
-            rx,
-            tx,
-            bus_ids,
-        } => {
-            o.u("uart", uart);
-            o.u("rx", rx);
-            o.u("tx", tx);
-            o.bytes("bus_ids", bus_ids);
-        }
-        ModuleInit::ShutdownRelay {
-            pin,
-            active_high,
-            wait_s,
-        } => {
-            o.u("pin", pin);
-            o.level("active_level", active_high);
-            o.u("wait_s", wait_s);
-        }
-        ModuleInit::Ssd1306 { port, addr } => {
-            o.u("port", port);
-            if let Some(addr) = addr {
-                o.u("addr", addr);
+
+        impl Visit for ModuleReport<'_> {
+            fn visit(&self, o: &mut W<'_>) {
+                match *self {
+                    $($($(ModuleReport::$rv { .. })|+ => {
+                        section_piece!(fields (self, o) (*self), $reports)
+                    })?)*
+                }
             }
         }
-    }
+    };
 }
+
+super::table::module_table!(module_fields);
 
 /// MODULE_DATA parsed as the data of one module type.
 enum ModuleData {
@@ -570,63 +558,6 @@ macro_rules! sensor_reading_fields {
 }
 
 super::table::sensor_table!(sensor_readings, sensor_reading_fields);
-
-impl Visit for ModuleReport<'_> {
-    fn visit(&self, o: &mut W<'_>) {
-        match *self {
-            ModuleReport::HiwonderPositions(ref positions) => {
-                o.s("subtype", "positions");
-                o.objs("positions", positions);
-            }
-            ModuleReport::HiwonderIdVerify { bus_id, ok } => {
-                o.s("subtype", "id_verify");
-                o.u("bus_id", bus_id);
-                o.flag("ok", ok);
-            }
-            ModuleReport::HiwonderRange {
-                idx,
-                min_cdeg,
-                max_cdeg,
-            } => {
-                o.s("subtype", "range");
-                o.u("idx", idx);
-                o.u("min_cdeg", min_cdeg);
-                o.u("max_cdeg", max_cdeg);
-            }
-            ModuleReport::HiwonderOffset { idx, offset_cdeg } => {
-                o.s("subtype", "offset");
-                o.u("idx", idx);
-                o.i("offset_cdeg", offset_cdeg);
-            }
-            ModuleReport::HiwonderAdded { bus_id, idx } => {
-                o.s("subtype", "added");
-                o.u("bus_id", bus_id);
-                o.u("idx", idx);
-            }
-            ModuleReport::Ssd1306Done {
-                kind,
-                len,
-                display_x,
-                enabled,
-            } => {
-                o.s(
-                    "subtype",
-                    match kind {
-                        Ssd1306Done::Text => "text_done",
-                        Ssd1306Done::Binary => "binary_done",
-                    },
-                );
-                o.u("len", len);
-                o.u("display_x", display_x);
-                o.flag("enabled", enabled);
-            }
-            ModuleReport::Ssd1306Disabled { request_sub } => {
-                o.s("subtype", "disabled");
-                o.u("request_sub", request_sub);
-            }
-        }
-    }
-}
 
 // ---------------------------------------------------------------- Display
 

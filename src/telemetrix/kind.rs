@@ -279,6 +279,30 @@ macro_rules! row_piece {
     };
 }
 
+/// The `fields` or `read` piece of a section of the module table (`init
+/// { variants { … } parse(…) { … } … }`, or `reports`), its parameters bound
+/// to the values in `$ctx`: `read` as an expression, `fields` as the arms of
+/// a `match` on `$value` (with a catch-all arm).
+macro_rules! section_piece {
+    ($name:ident $ctx:tt $value:tt, { variants $vars:tt $($piece:ident $params:tt $body:tt)* }) => {
+        $crate::telemetrix::kind::section_piece!(@find $name $ctx $value, $($piece $params $body)*)
+    };
+    (@find read $ctx:tt $value:tt, read ($($param:ident),*) { $($body:tt)* } $($rest:tt)*) => {{
+        $crate::telemetrix::kind::bind_hook!(($($param),*) = $ctx);
+        $($body)*
+    }};
+    (@find fields $ctx:tt ($value:expr), fields ($($param:ident),*) { $($body:tt)* } $($rest:tt)*) => {{
+        $crate::telemetrix::kind::bind_hook!(($($param),*) = $ctx);
+        match $value {
+            $($body)*
+            _ => {}
+        }
+    }};
+    (@find $name:ident $ctx:tt $value:tt, $piece:ident $params:tt $body:tt $($rest:tt)*) => {
+        $crate::telemetrix::kind::section_piece!(@find $name $ctx $value, $($rest)*)
+    };
+}
+
 /// Bind a `custom` row's hook parameters (the names the row's code uses,
 /// in the order the table's docs give) to the consumer's values: the row's
 /// own identifiers, so that macro hygiene lets its code see them.
@@ -290,5 +314,6 @@ macro_rules! bind_hook {
 }
 
 pub(crate) use {
-    bind_hook, check_field, check_row, field_type, read_field, row_piece, write_field, write_row,
+    bind_hook, check_field, check_row, field_type, read_field, row_piece, section_piece,
+    write_field, write_row,
 };

@@ -270,8 +270,10 @@
 //! to the table's parse. The MODULE_DATA messages that start with a subtype
 //! byte ([`HiwonderCommand`], [`Ssd1306Command`]) have a table per module
 //! type, the sensors one (`sensor_table!`: [`SensorType`] and
-//! [`SensorReading`]), all in the same file; the field kinds' Rust types,
-//! reads and writes are in `kind.rs`, shared by all tables.
+//! [`SensorReading`]) and the module types one (`module_table!`:
+//! [`ModuleType`], [`ModuleInit`], [`ModuleReport`]), all in the same file;
+//! the field kinds' Rust types, reads and writes are in `kind.rs`, shared by
+//! all tables.
 
 mod buf;
 mod command;

@@ -16,32 +16,169 @@ use crate::EncodeError;
 /// Most bytes of a MODULE_NEW init (LEN 30 less `id, 01, num, type`).
 pub const MODULE_INIT_MAX: usize = 26;
 
-/// Module types (spec §7).
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ModuleType {
-    /// 0: PCA9685 PWM expander.
-    Pca9685,
-    /// 1: Hiwonder serial bus servos.
-    HiwonderServo,
-    /// 2: shutdown relay.
-    ShutdownRelay,
-    /// 3: SSD1306 OLED display.
-    Ssd1306,
+/// `ModuleType`, `ModuleInit` and `ModuleReport` with their codecs, from
+/// the module table.
+macro_rules! modules {
+    ($($(#[$tm:meta])* $n:literal $t:ident $name:literal
+        init {
+            variants { $($idecl:tt)* }
+            parse ($($ipp:ident),*) { $($ipb:tt)* }
+            write ($($iwp:ident),*) { $($iwa:tt)* }
+            fields ($($ifp:ident),*) { $($ifa:tt)* }
+            read ($($irp:ident),*) { $($irb:tt)* }
+        }
+        $(reports [$($rv:ident),+ $(,)?] {
+            variants { $($rdecl:tt)* }
+            len ($($lp:ident),*) { $($lb:tt)* }
+            parse ($($rpp:ident),*) { $($rpb:tt)* }
+            write ($($rwp:ident),*) { $($rwa:tt)* }
+            fields ($($rfp:ident),*) { $($rfa:tt)* }
+            read ($($rrp:ident),*) { $($rrb:tt)* }
+        })?;)*) => {
+        /// Module types (spec §7).
+        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum ModuleType {
+            $($(#[$tm])* $t = $n,)*
+        }
+
+        impl ModuleType {
+            /// Every module type, in id order.
+            pub const ALL: [ModuleType; [$($n),*].len()] = [$(ModuleType::$t),*];
+
+            /// The type for a wire value.
+            pub const fn from_u8(value: u8) -> Option<Self> {
+                match value {
+                    $($n => Some(ModuleType::$t),)*
+                    _ => None,
+                }
+            }
+        }
+
+        /// A module's MODULE_NEW init bytes, by type.
+        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum ModuleInit<'a> {
+            $($($idecl)*)*
+        }
+
+        impl ModuleInit<'_> {
+            /// The module type this init is for.
+            pub const fn module_type(&self) -> ModuleType {
+                match self {
+                    $(ModuleInit::$t { .. } => ModuleType::$t,)*
+                }
+            }
+
+            /// Write the init bytes (after the type byte).
+            fn write(&self, w: &mut Writer<'_>) {
+                match *self {
+                    $(ModuleInit::$t { .. } => {
+                        bind_hook!(($($iwp),*) = (w));
+                        match *self {
+                            $($iwa)*
+                            _ => {}
+                        }
+                    })*
+                }
+            }
+        }
+
+        impl<'a> ModuleNew<'a> {
+            pub(crate) fn parse(r: &mut Reader<'a>) -> Result<Self, Error> {
+                let id = r.id();
+                match r.u8()? {
+                    0 => Ok(ModuleNew::Check {
+                        module_type: r.u8()?,
+                    }),
+                    1 => {
+                        let module_num = r.u8()?;
+                        let module_type = ModuleType::from_u8(r.u8()?).ok_or(Error::OutOfRange {
+                            id,
+                            field: "module_type",
+                        })?;
+                        // The init bytes after the type byte.
+                        let init = match module_type {
+                            $(ModuleType::$t => {
+                                bind_hook!(($($ipp),*) = (&mut *r, id));
+                                $($ipb)*
+                            })*
+                        };
+                        Ok(ModuleNew::Add { module_num, init })
+                    }
+                    _ => Err(Error::OutOfRange {
+                        id,
+                        field: "subtype",
+                    }),
+                }
+            }
+        }
+
+        /// The data of a MODULE_REPORT (report 34), by module type and subtype.
+        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum ModuleReport<'a> {
+            $($($($rdecl)*)?)*
+        }
+
+        impl ModuleReport<'_> {
+            /// The module type that sends this report.
+            pub const fn module_type(&self) -> ModuleType {
+                match self {
+                    $($($(ModuleReport::$rv { .. } => ModuleType::$t,)+)?)*
+                }
+            }
+
+            /// Write `type, subtype/data` (after the module number).
+            pub(crate) fn write(&self, w: &mut Writer<'_>) {
+                w.u8(self.module_type().as_u8());
+                match *self {
+                    $($($(ModuleReport::$rv { .. })|+ => {
+                        bind_hook!(($($rwp),*) = (w));
+                        match *self {
+                            $($rwa)*
+                            _ => {}
+                        }
+                    })?)*
+                }
+            }
+        }
+
+        impl<'a> ModuleReport<'a> {
+            /// Parse `type, …` after the module number.
+            pub(crate) fn parse(r: &mut Reader<'a>) -> Result<Self, Error> {
+                let id = r.id();
+                Ok(match ModuleType::from_u8(r.u8()?) {
+                    $($(Some(ModuleType::$t) => {
+                        bind_hook!(($($rpp),*) = (&mut *r, id));
+                        $($rpb)*
+                    })?)*
+                    // The types without reports.
+                    _ => return Err(Error::OutOfRange { id, field: "module_type" }),
+                })
+            }
+        }
+
+        /// Whether a report-34 `LEN` is possible given the bytes known so far
+        /// (`LEN, 34, num, type, subtype, …`). Used to reject early.
+        pub(crate) fn module_report_len_ok(len: u8, frame: &[u8]) -> bool {
+            let at = |i: usize| frame.get(i).copied();
+            match at(3) {
+                None => (5..=255).contains(&len),
+                $($(Some($n) => {
+                    bind_hook!(($($lp),*) = (len, at));
+                    $($lb)*
+                })?)*
+                // The types without reports.
+                Some(_) => false,
+            }
+        }
+    };
 }
 
-impl ModuleType {
-    /// The type for a wire value.
-    pub const fn from_u8(value: u8) -> Option<Self> {
-        match value {
-            0 => Some(ModuleType::Pca9685),
-            1 => Some(ModuleType::HiwonderServo),
-            2 => Some(ModuleType::ShutdownRelay),
-            3 => Some(ModuleType::Ssd1306),
-            _ => None,
-        }
-    }
+super::table::module_table!(modules);
 
+impl ModuleType {
     /// The wire value.
     pub const fn as_u8(self) -> u8 {
         self as u8
@@ -56,58 +193,6 @@ pub struct Pca9685Config {
     pub addr: u8,
     /// PWM frequency in Hz (default 50).
     pub freq_hz: u16,
-}
-
-/// A module's MODULE_NEW init bytes, by type.
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ModuleInit<'a> {
-    /// `port [, addr, u16 freq_hz]`.
-    Pca9685 {
-        /// I2C port 0 or 1.
-        port: u8,
-        /// Address and frequency, or the defaults.
-        config: Option<Pca9685Config>,
-    },
-    /// `uart, rx, tx, count, count × bus_id`.
-    HiwonderServo {
-        /// UART 0 or 1.
-        uart: u8,
-        /// RX GPIO (< 30).
-        rx: u8,
-        /// TX GPIO (< 30).
-        tx: u8,
-        /// Bus ids of the servos, at most 22; later messages use their index.
-        bus_ids: &'a [u8],
-    },
-    /// `pin, active_level, wait_s`.
-    ShutdownRelay {
-        /// Relay GPIO (< 30).
-        pin: u8,
-        /// Level that drives the relay.
-        active_high: bool,
-        /// Countdown in s.
-        wait_s: u8,
-    },
-    /// `port [, addr]`.
-    Ssd1306 {
-        /// I2C port 0 or 1.
-        port: u8,
-        /// 7-bit address (default 0x3C).
-        addr: Option<u8>,
-    },
-}
-
-impl ModuleInit<'_> {
-    /// The module type this init is for.
-    pub const fn module_type(&self) -> ModuleType {
-        match self {
-            ModuleInit::Pca9685 { .. } => ModuleType::Pca9685,
-            ModuleInit::HiwonderServo { .. } => ModuleType::HiwonderServo,
-            ModuleInit::ShutdownRelay { .. } => ModuleType::ShutdownRelay,
-            ModuleInit::Ssd1306 { .. } => ModuleType::Ssd1306,
-        }
-    }
 }
 
 /// MODULE_NEW (command 33).
@@ -133,12 +218,11 @@ impl ModuleNew<'_> {
     pub(crate) fn init_len(&self) -> usize {
         match self {
             ModuleNew::Check { .. } => 0,
-            ModuleNew::Add { init, .. } => match init {
-                ModuleInit::Pca9685 { config, .. } => 1 + 3 * usize::from(config.is_some()),
-                ModuleInit::HiwonderServo { bus_ids, .. } => 4 + bus_ids.len(),
-                ModuleInit::ShutdownRelay { .. } => 3,
-                ModuleInit::Ssd1306 { addr, .. } => 1 + usize::from(addr.is_some()),
-            },
+            ModuleNew::Add { init, .. } => {
+                let mut w = Writer::new(&mut []);
+                init.write(&mut w);
+                w.len()
+            }
         }
     }
 
@@ -147,106 +231,8 @@ impl ModuleNew<'_> {
             ModuleNew::Check { module_type } => w.bytes(&[0, *module_type]),
             ModuleNew::Add { module_num, init } => {
                 w.bytes(&[1, *module_num, init.module_type().as_u8()]);
-                match init {
-                    ModuleInit::Pca9685 { port, config } => {
-                        w.u8(*port);
-                        if let Some(c) = config {
-                            w.u8(c.addr);
-                            w.u16(c.freq_hz);
-                        }
-                    }
-                    ModuleInit::HiwonderServo {
-                        uart,
-                        rx,
-                        tx,
-                        bus_ids,
-                    } => {
-                        w.bytes(&[*uart, *rx, *tx, bus_ids.len() as u8]);
-                        w.bytes(bus_ids);
-                    }
-                    ModuleInit::ShutdownRelay {
-                        pin,
-                        active_high,
-                        wait_s,
-                    } => {
-                        w.u8(*pin);
-                        w.flag(*active_high);
-                        w.u8(*wait_s);
-                    }
-                    ModuleInit::Ssd1306 { port, addr } => {
-                        w.u8(*port);
-                        if let Some(a) = addr {
-                            w.u8(*a);
-                        }
-                    }
-                }
+                init.write(w);
             }
-        }
-    }
-}
-
-impl<'a> ModuleNew<'a> {
-    pub(crate) fn parse(r: &mut Reader<'a>) -> Result<Self, Error> {
-        let id = r.id();
-        match r.u8()? {
-            0 => Ok(ModuleNew::Check {
-                module_type: r.u8()?,
-            }),
-            1 => {
-                let module_num = r.u8()?;
-                let module_type = ModuleType::from_u8(r.u8()?).ok_or(Error::OutOfRange {
-                    id,
-                    field: "module_type",
-                })?;
-                let init = match module_type {
-                    ModuleType::Pca9685 => {
-                        let port = r.port()?;
-                        let config = if r.remaining() > 0 {
-                            let addr = r.u8()?;
-                            ensure(addr <= 0x7f, id, "addr")?;
-                            Some(Pca9685Config {
-                                addr,
-                                freq_hz: r.u16()?,
-                            })
-                        } else {
-                            None
-                        };
-                        ModuleInit::Pca9685 { port, config }
-                    }
-                    ModuleType::HiwonderServo => {
-                        let uart = r.port()?;
-                        let (rx, tx) = (r.pin("rx")?, r.pin("tx")?);
-                        let count = r.u8()?;
-                        ModuleInit::HiwonderServo {
-                            uart,
-                            rx,
-                            tx,
-                            bus_ids: r.take(usize::from(count))?,
-                        }
-                    }
-                    ModuleType::ShutdownRelay => ModuleInit::ShutdownRelay {
-                        pin: r.pin("pin")?,
-                        active_high: r.flag("active_level")?,
-                        wait_s: r.u8()?,
-                    },
-                    ModuleType::Ssd1306 => {
-                        let port = r.port()?;
-                        let addr = if r.remaining() > 0 {
-                            let addr = r.u8()?;
-                            ensure(addr <= 0x7f, id, "addr")?;
-                            Some(addr)
-                        } else {
-                            None
-                        };
-                        ModuleInit::Ssd1306 { port, addr }
-                    }
-                };
-                Ok(ModuleNew::Add { module_num, init })
-            }
-            _ => Err(Error::OutOfRange {
-                id,
-                field: "subtype",
-            }),
         }
     }
 }
@@ -550,206 +536,4 @@ pub enum Ssd1306Done {
     Text,
     /// After BINARY_DONE (3).
     Binary,
-}
-
-/// The data of a MODULE_REPORT (report 34), by module type and subtype.
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ModuleReport<'a> {
-    /// Hiwonder subtype 0: positions of changed servos (and each at least once
-    /// a second).
-    HiwonderPositions(ServoPositions<'a>),
-    /// Hiwonder subtype 4: ID_VERIFY reply.
-    HiwonderIdVerify {
-        /// The bus id asked about.
-        bus_id: u8,
-        /// Whether it answered.
-        ok: bool,
-    },
-    /// Hiwonder subtype 6: RANGE_READ reply.
-    HiwonderRange {
-        /// Servo index.
-        idx: u8,
-        /// Lower limit in centidegrees.
-        min_cdeg: u16,
-        /// Upper limit in centidegrees.
-        max_cdeg: u16,
-    },
-    /// Hiwonder subtype 8: OFFSET_READ reply.
-    HiwonderOffset {
-        /// Servo index.
-        idx: u8,
-        /// Offset in centidegrees.
-        offset_cdeg: i16,
-    },
-    /// Hiwonder subtype 11: ADD_SERVO reply.
-    HiwonderAdded {
-        /// The bus id added.
-        bus_id: u8,
-        /// Its index.
-        idx: u8,
-    },
-    /// SSD1306: a text or binary transfer completed.
-    Ssd1306Done {
-        /// Which transfer.
-        kind: Ssd1306Done,
-        /// Text length, or 1.
-        len: u8,
-        /// Display x position.
-        display_x: u8,
-        /// Whether the display is enabled.
-        enabled: bool,
-    },
-    /// SSD1306: a request was refused because the display is disabled.
-    Ssd1306Disabled {
-        /// Subtype of the refused request, echoed: 0..=3, or whatever a
-        /// request carried ([`Quirk::EchoedRequestByte`](super::Quirk::EchoedRequestByte);
-        /// the encoder sends 0..=3 only).
-        request_sub: u8,
-    },
-}
-
-impl ModuleReport<'_> {
-    /// The module type that sends this report.
-    pub const fn module_type(&self) -> ModuleType {
-        match self {
-            ModuleReport::Ssd1306Done { .. } | ModuleReport::Ssd1306Disabled { .. } => {
-                ModuleType::Ssd1306
-            }
-            _ => ModuleType::HiwonderServo,
-        }
-    }
-
-    /// Write `type, subtype/data` (after the module number).
-    pub(crate) fn write(&self, w: &mut Writer<'_>) {
-        w.u8(self.module_type().as_u8());
-        match self {
-            ModuleReport::HiwonderPositions(p) => {
-                w.u8(0);
-                w.bytes(p.raw);
-            }
-            ModuleReport::HiwonderIdVerify { bus_id, ok } => {
-                w.bytes(&[4, *bus_id]);
-                w.flag(*ok);
-            }
-            ModuleReport::HiwonderRange {
-                idx,
-                min_cdeg,
-                max_cdeg,
-            } => {
-                w.bytes(&[6, *idx]);
-                w.u16(*min_cdeg);
-                w.u16(*max_cdeg);
-            }
-            ModuleReport::HiwonderOffset { idx, offset_cdeg } => {
-                w.bytes(&[8, *idx]);
-                w.i16(*offset_cdeg);
-            }
-            ModuleReport::HiwonderAdded { bus_id, idx } => w.bytes(&[11, *bus_id, *idx]),
-            ModuleReport::Ssd1306Done {
-                kind,
-                len,
-                display_x,
-                enabled,
-            } => {
-                let kind = match kind {
-                    Ssd1306Done::Text => 1,
-                    Ssd1306Done::Binary => 3,
-                };
-                w.bytes(&[kind, *len, *display_x]);
-                w.flag(*enabled);
-            }
-            ModuleReport::Ssd1306Disabled { request_sub } => w.bytes(&[*request_sub, 254]),
-        }
-    }
-}
-
-impl<'a> ModuleReport<'a> {
-    /// Parse `type, …` after the module number.
-    pub(crate) fn parse(r: &mut Reader<'a>) -> Result<Self, Error> {
-        let id = r.id();
-        match ModuleType::from_u8(r.u8()?) {
-            Some(ModuleType::HiwonderServo) => Ok(match r.u8()? {
-                0 => {
-                    let raw = r.rest();
-                    if raw.is_empty() || raw.len() % 3 != 0 {
-                        return Err(r.bad_length());
-                    }
-                    ModuleReport::HiwonderPositions(ServoPositions { raw })
-                }
-                4 => ModuleReport::HiwonderIdVerify {
-                    bus_id: r.u8()?,
-                    ok: r.flag("ok")?,
-                },
-                6 => ModuleReport::HiwonderRange {
-                    idx: r.u8()?,
-                    min_cdeg: r.u16()?,
-                    max_cdeg: r.u16()?,
-                },
-                8 => ModuleReport::HiwonderOffset {
-                    idx: r.u8()?,
-                    offset_cdeg: r.i16()?,
-                },
-                11 => ModuleReport::HiwonderAdded {
-                    bus_id: r.u8()?,
-                    idx: r.u8()?,
-                },
-                _ => {
-                    return Err(Error::OutOfRange {
-                        id,
-                        field: "subtype",
-                    })
-                }
-            }),
-            Some(ModuleType::Ssd1306) => match r.remaining() {
-                4 => {
-                    let kind = match r.u8()? {
-                        1 => Ssd1306Done::Text,
-                        3 => Ssd1306Done::Binary,
-                        _ => {
-                            return Err(Error::OutOfRange {
-                                id,
-                                field: "msg_type",
-                            })
-                        }
-                    };
-                    Ok(ModuleReport::Ssd1306Done {
-                        kind,
-                        len: r.u8()?,
-                        display_x: r.u8()?,
-                        enabled: r.flag("enabled")?,
-                    })
-                }
-                2 => {
-                    // The firmware echoes the request's subtype byte, whatever
-                    // it was: accepted, and flagged as a quirk above 3.
-                    let request_sub = r.u8()?;
-                    ensure(r.u8()? == 254, id, "disabled marker")?;
-                    Ok(ModuleReport::Ssd1306Disabled { request_sub })
-                }
-                _ => Err(r.bad_length()),
-            },
-            // PCA9685 and the shutdown relay send no reports.
-            _ => Err(Error::OutOfRange {
-                id,
-                field: "module_type",
-            }),
-        }
-    }
-}
-
-/// Whether a report-34 `LEN` is possible given the bytes known so far
-/// (`LEN, 34, num, type, subtype, …`). Used to reject early.
-pub(crate) fn module_report_len_ok(len: u8, frame: &[u8]) -> bool {
-    match (frame.get(3), frame.get(4)) {
-        (None, _) => (5..=255).contains(&len),
-        (Some(1), None) => len >= 6,
-        (Some(1), Some(0)) => len >= 7 && (len - 4) % 3 == 0,
-        (Some(1), Some(4 | 11)) => len == 6,
-        (Some(1), Some(6)) => len == 9,
-        (Some(1), Some(8)) => len == 7,
-        (Some(1), Some(_)) => false,
-        (Some(3), _) => len == 5 || len == 7,
-        (Some(_), _) => false,
-    }
 }

@@ -94,13 +94,14 @@ macro_rules! join_names {
 
 super::table::sensor_table!(sensor_names);
 
-named!(
-    ModuleType,
-    "module type",
-    ["pca9685", "hiwonder_servo", "shutdown_relay", "ssd1306"],
-    "pca9685, hiwonder_servo, shutdown_relay, ssd1306",
-    ModuleType::ALL
-);
+/// `ModuleType`'s names, from the module table.
+macro_rules! module_names {
+    ($($(#[$tm:meta])* $n:literal $t:ident $name:literal init $init:tt $(reports $rvs:tt $reports:tt)?;)*) => {
+        named!(ModuleType, "module type", [$($name),*], join_names!($($name),*), ModuleType::ALL);
+    };
+}
+
+super::table::module_table!(module_names);
 
 named!(
     EncoderKind,
@@ -125,16 +126,6 @@ named!(
      encoder_type_not_1_or_2, echoed_request_byte, analog_reporting_pin_not_adc",
     Quirk::ALL
 );
-
-impl ModuleType {
-    /// Every module type, in id order.
-    pub const ALL: [ModuleType; 4] = [
-        ModuleType::Pca9685,
-        ModuleType::HiwonderServo,
-        ModuleType::ShutdownRelay,
-        ModuleType::Ssd1306,
-    ];
-}
 
 impl PinMode {
     /// The names of the modes (the schema's `mode`), in the order of

@@ -19,7 +19,7 @@ use super::command::{
 use super::dialect::Dialect;
 use super::error::Error;
 use super::fields::{Visit, V, W};
-use super::kind::bind_hook;
+use super::kind::{bind_hook, section_piece};
 use super::list::List;
 use super::module::{
     HiwonderCommand, ModuleCommand, ModuleInit, ModuleNew, ModuleReport, ModuleType,
@@ -829,43 +829,35 @@ impl<'b> ModuleNew<'b> {
     }
 }
 
-fn module_init<'b>(
-    module_type: ModuleType,
-    f: &mut Fields<'_>,
-    buf: &'b mut Vec<u8>,
-) -> Result<ModuleInit<'b>, String> {
-    Ok(match module_type {
-        ModuleType::Pca9685 => ModuleInit::Pca9685 {
-            port: u8_(f, "port")?,
-            config: match (f.has("addr"), f.has("freq_hz")) {
-                (false, false) => None,
-                _ => Some(Pca9685Config {
-                    addr: u8_(f, "addr")?,
-                    freq_hz: u16_(f, "freq_hz")?,
-                }),
-            },
-        },
-        ModuleType::HiwonderServo => ModuleInit::HiwonderServo {
-            uart: u8_(f, "uart")?,
-            rx: u8_(f, "rx")?,
-            tx: u8_(f, "tx")?,
-            bus_ids: bytes_in(f, "bus_ids", buf)?,
-        },
-        ModuleType::ShutdownRelay => ModuleInit::ShutdownRelay {
-            pin: u8_(f, "pin")?,
-            active_high: level(f, "active_level")?,
-            wait_s: u8_(f, "wait_s")?,
-        },
-        ModuleType::Ssd1306 => ModuleInit::Ssd1306 {
-            port: u8_(f, "port")?,
-            addr: if f.has("addr") {
-                Some(u8_(f, "addr")?)
-            } else {
-                None
-            },
-        },
-    })
+/// The JSON members of a module's init and reports, from the module table.
+macro_rules! module_readers {
+    ($($(#[$tm:meta])* $n:literal $t:ident $name:literal
+        init $init:tt $(reports [$($rv:ident),+ $(,)?] $reports:tt)?;)*) => {
+        fn module_init<'b>(
+            module_type: ModuleType,
+            f: &mut Fields<'_>,
+            buf: &'b mut Vec<u8>,
+        ) -> Result<ModuleInit<'b>, String> {
+            Ok(match module_type {
+                $(ModuleType::$t => section_piece!(read (f, buf) (), $init),)*
+            })
+        }
+
+        fn module_report<'b>(
+            module_type: ModuleType,
+            f: &mut Fields<'_>,
+            buf: &'b mut Vec<u8>,
+        ) -> Result<ModuleReport<'b>, String> {
+            Ok(match module_type {
+                $($(ModuleType::$t => section_piece!(read (f, buf) (), $reports),)?)*
+                // The types without reports.
+                _ => return Err(format!("module type {module_type} sends no reports")),
+            })
+        }
+    };
 }
+
+super::table::module_table!(module_readers);
 
 /// Typed MODULE_DATA: the module's message, built into the data bytes by the
 /// module (which checks it as its parser would).
@@ -966,68 +958,3 @@ macro_rules! sensor_reading_reader {
 }
 
 super::table::sensor_table!(sensor_readings, sensor_reading_reader);
-
-fn module_report<'b>(
-    module_type: ModuleType,
-    f: &mut Fields<'_>,
-    buf: &'b mut Vec<u8>,
-) -> Result<ModuleReport<'b>, String> {
-    Ok(match module_type {
-        ModuleType::HiwonderServo => {
-            let subtypes = ["positions", "id_verify", "range", "offset", "added"];
-            match name(f, "subtype", &subtypes)? {
-                0 => {
-                    let positions = objects(f, "positions", |p| {
-                        Ok((u8_(p, "idx")?, u16_(p, "centideg")?))
-                    })?;
-                    *buf = positions
-                        .iter()
-                        .flat_map(|&(idx, cdeg)| {
-                            let [hi, lo] = cdeg.to_be_bytes();
-                            [idx, hi, lo]
-                        })
-                        .collect();
-                    ModuleReport::HiwonderPositions(ServoPositions::from_raw(buf))
-                }
-                1 => ModuleReport::HiwonderIdVerify {
-                    bus_id: u8_(f, "bus_id")?,
-                    ok: flag(f, "ok")?,
-                },
-                2 => ModuleReport::HiwonderRange {
-                    idx: u8_(f, "idx")?,
-                    min_cdeg: u16_(f, "min_cdeg")?,
-                    max_cdeg: u16_(f, "max_cdeg")?,
-                },
-                3 => ModuleReport::HiwonderOffset {
-                    idx: u8_(f, "idx")?,
-                    offset_cdeg: i16_(f, "offset_cdeg")?,
-                },
-                _ => ModuleReport::HiwonderAdded {
-                    bus_id: u8_(f, "bus_id")?,
-                    idx: u8_(f, "idx")?,
-                },
-            }
-        }
-        ModuleType::Ssd1306 => {
-            let subtypes = ["text_done", "binary_done", "disabled"];
-            match name(f, "subtype", &subtypes)? {
-                kind @ (0 | 1) => ModuleReport::Ssd1306Done {
-                    kind: if kind == 0 {
-                        Ssd1306Done::Text
-                    } else {
-                        Ssd1306Done::Binary
-                    },
-                    len: u8_(f, "len")?,
-                    display_x: u8_(f, "display_x")?,
-                    enabled: flag(f, "enabled")?,
-                },
-                _ => ModuleReport::Ssd1306Disabled {
-                    request_sub: u8_(f, "request_sub")?,
-                },
-            }
-        }
-        ModuleType::Pca9685 | ModuleType::ShutdownRelay => {
-            return Err(format!("module type {module_type} sends no reports"))
-        }
-    })
-}

@@ -94,6 +94,14 @@
 //! MODULE_DATA messages of a module type that starts with a subtype byte
 //! the same way, one row per subtype: the enum, its encode and parse
 //! (`ModuleCommand`), its JSON fields and its serde reader come from them.
+//! The sensor table (`sensor_table`) has a row per sensor type: the
+//! [`SensorType`](super::SensorType) and its names, and its
+//! [`SensorReading`](super::SensorReading) in `plain` fields or `custom`
+//! code. The module table (`module_table`) has a row per module type: the
+//! [`ModuleType`](super::ModuleType) and its names, its MODULE_NEW init
+//! ([`ModuleInit`](super::ModuleInit)) and the MODULE_REPORTs it sends
+//! ([`ModuleReport`](super::ModuleReport)), each a section with a `custom`
+//! row's pieces.
 
 /// Hand the command rows to `$callback!`, after `$extra` (in brackets) when
 /// given: a consumer that expands in expression position takes its
@@ -2261,3 +2269,449 @@ macro_rules! sensor_readings {
 }
 
 pub(crate) use sensor_readings;
+
+/// Hand the module rows to `$callback!`: one row per module type (spec
+/// §7), its type byte, its [`ModuleType`](super::ModuleType) variant with
+/// that variant's docs, its name, then its MODULE_NEW init and, for a type
+/// that sends MODULE_REPORTs, its reports. `init { … }` holds the
+/// [`ModuleInit`](super::ModuleInit) variant named after the type and its
+/// code as a `custom` row's (`parse(r, id)` after the type byte,
+/// `write(w)`, `fields(view, w)`, `read(f, buf)`); `reports [Variants] { … }`
+/// holds the [`ModuleReport`](super::ModuleReport) variants in brackets and
+/// as declared, the `LEN` rule of a report of the type
+/// (`len(len, at) { … }`, `at(i)` the frame's byte `i` if known), and its
+/// code (`parse(r, id)` after the type byte, `write(w)`, `fields(view, w)`,
+/// `read(f, buf)`). A module's MODULE_DATA is its data table
+/// ([`hiwonder_table`], [`ssd1306_table`]) or its own type.
+macro_rules! module_table {
+    ($callback:ident) => {
+        $callback! {
+            /// 0: PCA9685 PWM expander.
+            0 Pca9685 "pca9685"
+                init {
+                    variants {
+                        /// `port [, addr, u16 freq_hz]`.
+                        Pca9685 {
+                            /// I2C port 0 or 1.
+                            port: u8,
+                            /// Address and frequency, or the defaults.
+                            config: Option<Pca9685Config>,
+                        },
+                    }
+                    parse(r, id) {
+                        let port = r.port()?;
+                        let config = if r.remaining() > 0 {
+                            let addr = r.u8()?;
+                            ensure(addr <= 0x7f, id, "addr")?;
+                            Some(Pca9685Config { addr, freq_hz: r.u16()? })
+                        } else {
+                            None
+                        };
+                        ModuleInit::Pca9685 { port, config }
+                    }
+                    write(w) {
+                        ModuleInit::Pca9685 { port, config } => {
+                            w.u8(port);
+                            if let Some(c) = config {
+                                w.u8(c.addr);
+                                w.u16(c.freq_hz);
+                            }
+                        }
+                    }
+                    fields(view, w) {
+                        ModuleInit::Pca9685 { port, config } => {
+                            w.u("port", port);
+                            if let Some(config) = config {
+                                w.u("addr", config.addr);
+                                w.u("freq_hz", config.freq_hz);
+                            }
+                        }
+                    }
+                    read(f, buf) {
+                        ModuleInit::Pca9685 {
+                            port: u8_(f, "port")?,
+                            config: match (f.has("addr"), f.has("freq_hz")) {
+                                (false, false) => None,
+                                _ => Some(Pca9685Config {
+                                    addr: u8_(f, "addr")?,
+                                    freq_hz: u16_(f, "freq_hz")?,
+                                }),
+                            },
+                        }
+                    }
+                };
+            /// 1: Hiwonder serial bus servos.
+            1 HiwonderServo "hiwonder_servo"
+                init {
+                    variants {
+                        /// `uart, rx, tx, count, count × bus_id`.
+                        HiwonderServo {
+                            /// UART 0 or 1.
+                            uart: u8,
+                            /// RX GPIO (< 30).
+                            rx: u8,
+                            /// TX GPIO (< 30).
+                            tx: u8,
+                            /// Bus ids of the servos, at most 22; later messages use their index.
+                            bus_ids: &'a [u8],
+                        },
+                    }
+                    parse(r, id) {
+                        let uart = r.port()?;
+                        let (rx, tx) = (r.pin("rx")?, r.pin("tx")?);
+                        let count = r.u8()?;
+                        ModuleInit::HiwonderServo { uart, rx, tx, bus_ids: r.take(usize::from(count))? }
+                    }
+                    write(w) {
+                        ModuleInit::HiwonderServo { uart, rx, tx, bus_ids } => {
+                            w.bytes(&[uart, rx, tx, bus_ids.len() as u8]);
+                            w.bytes(bus_ids);
+                        }
+                    }
+                    fields(view, w) {
+                        ModuleInit::HiwonderServo { uart, rx, tx, bus_ids } => {
+                            w.u("uart", uart);
+                            w.u("rx", rx);
+                            w.u("tx", tx);
+                            w.bytes("bus_ids", bus_ids);
+                        }
+                    }
+                    read(f, buf) {
+                        ModuleInit::HiwonderServo {
+                            uart: u8_(f, "uart")?,
+                            rx: u8_(f, "rx")?,
+                            tx: u8_(f, "tx")?,
+                            bus_ids: bytes_in(f, "bus_ids", buf)?,
+                        }
+                    }
+                }
+                reports [
+                    HiwonderPositions, HiwonderIdVerify, HiwonderRange, HiwonderOffset, HiwonderAdded
+                ] {
+                    variants {
+                        /// Hiwonder subtype 0: positions of changed servos (and each at least once
+                        /// a second).
+                        HiwonderPositions(ServoPositions<'a>),
+                        /// Hiwonder subtype 4: ID_VERIFY reply.
+                        HiwonderIdVerify {
+                            /// The bus id asked about.
+                            bus_id: u8,
+                            /// Whether it answered.
+                            ok: bool,
+                        },
+                        /// Hiwonder subtype 6: RANGE_READ reply.
+                        HiwonderRange {
+                            /// Servo index.
+                            idx: u8,
+                            /// Lower limit in centidegrees.
+                            min_cdeg: u16,
+                            /// Upper limit in centidegrees.
+                            max_cdeg: u16,
+                        },
+                        /// Hiwonder subtype 8: OFFSET_READ reply.
+                        HiwonderOffset {
+                            /// Servo index.
+                            idx: u8,
+                            /// Offset in centidegrees.
+                            offset_cdeg: i16,
+                        },
+                        /// Hiwonder subtype 11: ADD_SERVO reply.
+                        HiwonderAdded {
+                            /// The bus id added.
+                            bus_id: u8,
+                            /// Its index.
+                            idx: u8,
+                        },
+                    }
+                    len(len, at) {
+                        match at(4) {
+                            None => len >= 6,
+                            Some(0) => len >= 7 && (len - 4) % 3 == 0,
+                            Some(4 | 11) => len == 6,
+                            Some(6) => len == 9,
+                            Some(8) => len == 7,
+                            Some(_) => false,
+                        }
+                    }
+                    parse(r, id) {
+                        match r.u8()? {
+                            0 => {
+                                let raw = r.rest();
+                                if raw.is_empty() || raw.len() % 3 != 0 {
+                                    return Err(r.bad_length());
+                                }
+                                ModuleReport::HiwonderPositions(ServoPositions::from_raw(raw))
+                            }
+                            4 => ModuleReport::HiwonderIdVerify { bus_id: r.u8()?, ok: r.flag("ok")? },
+                            6 => ModuleReport::HiwonderRange {
+                                idx: r.u8()?,
+                                min_cdeg: r.u16()?,
+                                max_cdeg: r.u16()?,
+                            },
+                            8 => ModuleReport::HiwonderOffset { idx: r.u8()?, offset_cdeg: r.i16()? },
+                            11 => ModuleReport::HiwonderAdded { bus_id: r.u8()?, idx: r.u8()? },
+                            _ => return Err(Error::OutOfRange { id, field: "subtype" }),
+                        }
+                    }
+                    write(w) {
+                        ModuleReport::HiwonderPositions(p) => {
+                            w.u8(0);
+                            w.bytes(p.raw());
+                        }
+                        ModuleReport::HiwonderIdVerify { bus_id, ok } => {
+                            w.bytes(&[4, bus_id]);
+                            w.flag(ok);
+                        }
+                        ModuleReport::HiwonderRange { idx, min_cdeg, max_cdeg } => {
+                            w.bytes(&[6, idx]);
+                            w.u16(min_cdeg);
+                            w.u16(max_cdeg);
+                        }
+                        ModuleReport::HiwonderOffset { idx, offset_cdeg } => {
+                            w.bytes(&[8, idx]);
+                            w.i16(offset_cdeg);
+                        }
+                        ModuleReport::HiwonderAdded { bus_id, idx } => w.bytes(&[11, bus_id, idx]),
+                    }
+                    fields(view, w) {
+                        ModuleReport::HiwonderPositions(positions) => {
+                            w.s("subtype", "positions");
+                            w.objs("positions", &positions);
+                        }
+                        ModuleReport::HiwonderIdVerify { bus_id, ok } => {
+                            w.s("subtype", "id_verify");
+                            w.u("bus_id", bus_id);
+                            w.flag("ok", ok);
+                        }
+                        ModuleReport::HiwonderRange { idx, min_cdeg, max_cdeg } => {
+                            w.s("subtype", "range");
+                            w.u("idx", idx);
+                            w.u("min_cdeg", min_cdeg);
+                            w.u("max_cdeg", max_cdeg);
+                        }
+                        ModuleReport::HiwonderOffset { idx, offset_cdeg } => {
+                            w.s("subtype", "offset");
+                            w.u("idx", idx);
+                            w.i("offset_cdeg", offset_cdeg);
+                        }
+                        ModuleReport::HiwonderAdded { bus_id, idx } => {
+                            w.s("subtype", "added");
+                            w.u("bus_id", bus_id);
+                            w.u("idx", idx);
+                        }
+                    }
+                    read(f, buf) {
+                        let subtypes = ["positions", "id_verify", "range", "offset", "added"];
+                        match name(f, "subtype", &subtypes)? {
+                            0 => {
+                                let positions = objects(f, "positions", |p| {
+                                    Ok((u8_(p, "idx")?, u16_(p, "centideg")?))
+                                })?;
+                                *buf = positions
+                                    .iter()
+                                    .flat_map(|&(idx, cdeg)| {
+                                        let [hi, lo] = cdeg.to_be_bytes();
+                                        [idx, hi, lo]
+                                    })
+                                    .collect();
+                                ModuleReport::HiwonderPositions(ServoPositions::from_raw(buf))
+                            }
+                            1 => ModuleReport::HiwonderIdVerify {
+                                bus_id: u8_(f, "bus_id")?,
+                                ok: flag(f, "ok")?,
+                            },
+                            2 => ModuleReport::HiwonderRange {
+                                idx: u8_(f, "idx")?,
+                                min_cdeg: u16_(f, "min_cdeg")?,
+                                max_cdeg: u16_(f, "max_cdeg")?,
+                            },
+                            3 => ModuleReport::HiwonderOffset {
+                                idx: u8_(f, "idx")?,
+                                offset_cdeg: i16_(f, "offset_cdeg")?,
+                            },
+                            _ => ModuleReport::HiwonderAdded {
+                                bus_id: u8_(f, "bus_id")?,
+                                idx: u8_(f, "idx")?,
+                            },
+                        }
+                    }
+                };
+            /// 2: shutdown relay.
+            2 ShutdownRelay "shutdown_relay"
+                init {
+                    variants {
+                        /// `pin, active_level, wait_s`.
+                        ShutdownRelay {
+                            /// Relay GPIO (< 30).
+                            pin: u8,
+                            /// Level that drives the relay.
+                            active_high: bool,
+                            /// Countdown in s.
+                            wait_s: u8,
+                        },
+                    }
+                    parse(r, id) {
+                        ModuleInit::ShutdownRelay {
+                            pin: r.pin("pin")?,
+                            active_high: r.flag("active_level")?,
+                            wait_s: r.u8()?,
+                        }
+                    }
+                    write(w) {
+                        ModuleInit::ShutdownRelay { pin, active_high, wait_s } => {
+                            w.u8(pin);
+                            w.flag(active_high);
+                            w.u8(wait_s);
+                        }
+                    }
+                    fields(view, w) {
+                        ModuleInit::ShutdownRelay { pin, active_high, wait_s } => {
+                            w.u("pin", pin);
+                            w.level("active_level", active_high);
+                            w.u("wait_s", wait_s);
+                        }
+                    }
+                    read(f, buf) {
+                        ModuleInit::ShutdownRelay {
+                            pin: u8_(f, "pin")?,
+                            active_high: level(f, "active_level")?,
+                            wait_s: u8_(f, "wait_s")?,
+                        }
+                    }
+                };
+            /// 3: SSD1306 OLED display.
+            3 Ssd1306 "ssd1306"
+                init {
+                    variants {
+                        /// `port [, addr]`.
+                        Ssd1306 {
+                            /// I2C port 0 or 1.
+                            port: u8,
+                            /// 7-bit address (default 0x3C).
+                            addr: Option<u8>,
+                        },
+                    }
+                    parse(r, id) {
+                        let port = r.port()?;
+                        let addr = if r.remaining() > 0 { Some(r.i2c_addr()?) } else { None };
+                        ModuleInit::Ssd1306 { port, addr }
+                    }
+                    write(w) {
+                        ModuleInit::Ssd1306 { port, addr } => {
+                            w.u8(port);
+                            if let Some(a) = addr {
+                                w.u8(a);
+                            }
+                        }
+                    }
+                    fields(view, w) {
+                        ModuleInit::Ssd1306 { port, addr } => {
+                            w.u("port", port);
+                            if let Some(addr) = addr {
+                                w.u("addr", addr);
+                            }
+                        }
+                    }
+                    read(f, buf) {
+                        ModuleInit::Ssd1306 {
+                            port: u8_(f, "port")?,
+                            addr: if f.has("addr") { Some(u8_(f, "addr")?) } else { None },
+                        }
+                    }
+                }
+                reports [Ssd1306Done, Ssd1306Disabled] {
+                    variants {
+                        /// SSD1306: a text or binary transfer completed.
+                        Ssd1306Done {
+                            /// Which transfer.
+                            kind: Ssd1306Done,
+                            /// Text length, or 1.
+                            len: u8,
+                            /// Display x position.
+                            display_x: u8,
+                            /// Whether the display is enabled.
+                            enabled: bool,
+                        },
+                        /// SSD1306: a request was refused because the display is disabled.
+                        Ssd1306Disabled {
+                            /// Subtype of the refused request, echoed: 0..=3, or whatever a
+                            /// request carried ([`Quirk::EchoedRequestByte`](super::Quirk::EchoedRequestByte);
+                            /// the encoder sends 0..=3 only).
+                            request_sub: u8,
+                        },
+                    }
+                    len(len, at) {
+                        len == 5 || len == 7
+                    }
+                    parse(r, id) {
+                        match r.remaining() {
+                            4 => {
+                                let kind = match r.u8()? {
+                                    1 => Ssd1306Done::Text,
+                                    3 => Ssd1306Done::Binary,
+                                    _ => return Err(Error::OutOfRange { id, field: "msg_type" }),
+                                };
+                                ModuleReport::Ssd1306Done {
+                                    kind,
+                                    len: r.u8()?,
+                                    display_x: r.u8()?,
+                                    enabled: r.flag("enabled")?,
+                                }
+                            }
+                            2 => {
+                                // The firmware echoes the request's subtype byte, whatever
+                                // it was: accepted, and flagged as a quirk above 3.
+                                let request_sub = r.u8()?;
+                                ensure(r.u8()? == 254, id, "disabled marker")?;
+                                ModuleReport::Ssd1306Disabled { request_sub }
+                            }
+                            _ => return Err(r.bad_length()),
+                        }
+                    }
+                    write(w) {
+                        ModuleReport::Ssd1306Done { kind, len, display_x, enabled } => {
+                            let kind = match kind {
+                                Ssd1306Done::Text => 1,
+                                Ssd1306Done::Binary => 3,
+                            };
+                            w.bytes(&[kind, len, display_x]);
+                            w.flag(enabled);
+                        }
+                        ModuleReport::Ssd1306Disabled { request_sub } => w.bytes(&[request_sub, 254]),
+                    }
+                    fields(view, w) {
+                        ModuleReport::Ssd1306Done { kind, len, display_x, enabled } => {
+                            let subtype = match kind {
+                                Ssd1306Done::Text => "text_done",
+                                Ssd1306Done::Binary => "binary_done",
+                            };
+                            w.s("subtype", subtype);
+                            w.u("len", len);
+                            w.u("display_x", display_x);
+                            w.flag("enabled", enabled);
+                        }
+                        ModuleReport::Ssd1306Disabled { request_sub } => {
+                            w.s("subtype", "disabled");
+                            w.u("request_sub", request_sub);
+                        }
+                    }
+                    read(f, buf) {
+                        let subtypes = ["text_done", "binary_done", "disabled"];
+                        match name(f, "subtype", &subtypes)? {
+                            kind @ (0 | 1) => ModuleReport::Ssd1306Done {
+                                kind: if kind == 0 { Ssd1306Done::Text } else { Ssd1306Done::Binary },
+                                len: u8_(f, "len")?,
+                                display_x: u8_(f, "display_x")?,
+                                enabled: flag(f, "enabled")?,
+                            },
+                            _ => ModuleReport::Ssd1306Disabled {
+                                request_sub: u8_(f, "request_sub")?,
+                            },
+                        }
+                    }
+                };
+        }
+    };
+}
+
+pub(crate) use module_table;
