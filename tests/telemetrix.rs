@@ -285,6 +285,42 @@ fn golden_module_data_is_typed() {
     );
 }
 
+/// The PCA9685 has channels 0..=15 (spec §7.2): 15 is encoded and read,
+/// 16 is refused by both, and data without a channel is refused.
+#[test]
+fn pca9685_channels_stop_at_15() {
+    use robowire::telemetrix::ModuleCommand;
+    let pca = |channel| Pca9685Command {
+        channels: List::from_slice(&[Pca9685Channel {
+            channel,
+            on: 0,
+            off: 300,
+        }])
+        .unwrap(),
+    };
+    let data = pca(15).to_data().unwrap();
+    assert_eq!(&data[..], &hex("0F 00 00 01 2C")[..]);
+    assert_eq!(Pca9685Command::parse(&data), Ok(pca(15)));
+    assert_eq!(
+        pca(16).to_data(),
+        Err(EncodeError::OutOfRange { field: "channel" })
+    );
+    assert!(matches!(
+        Pca9685Command::parse(&hex("10 00 00 01 2C")),
+        Err(Error::OutOfRange {
+            field: "channel",
+            ..
+        })
+    ));
+    assert!(matches!(
+        Pca9685Command::parse(&[]),
+        Err(Error::OutOfRange {
+            field: "channels",
+            ..
+        })
+    ));
+}
+
 #[test]
 fn golden_port_probe_zeros_are_skipped() {
     let events = decode_commands(M13, &hex("00 00 00 00 00 00 00 01 05"));

@@ -442,7 +442,8 @@ impl Visit for ModuleNew<'_> {
 /// The JSON fields of a module's init and reports, from the module table.
 macro_rules! module_fields {
     ($($(#[$tm:meta])* $n:literal $t:ident $name:literal
-        init $init:tt $(reports [$($rv:ident),+ $(,)?] $reports:tt)?;)*) => {
+        init $init:tt data $data:ident $dsec:tt
+        $(reports [$($rv:ident),+ $(,)?] $reports:tt)?;)*) => {
         impl Visit for ModuleInit<'_> {
             fn visit(&self, o: &mut W<'_>) {
                 match *self {
@@ -460,46 +461,43 @@ macro_rules! module_fields {
                 }
             }
         }
+
+        /// MODULE_DATA parsed as the data of one module type.
+        enum ModuleData {
+            $($t($data),)*
+        }
+
+        impl ModuleData {
+            fn parse(module_type: ModuleType, data: &[u8]) -> Option<Self> {
+                match module_type {
+                    $(ModuleType::$t => $data::parse(data).ok().map(Self::$t),)*
+                }
+            }
+        }
+
+        impl Visit for ModuleData {
+            fn visit(&self, o: &mut W<'_>) {
+                match self {
+                    $(ModuleData::$t(m) => module_data_fields!(o, m, $dsec),)*
+                }
+            }
+        }
     };
 }
 
+/// A module's MODULE_DATA fields: its data table's, or the row's `fields`.
+macro_rules! module_data_fields {
+    ($o:ident, $m:ident, table) => {
+        $m.visit($o)
+    };
+    ($o:ident, $m:ident, { parse $pp:tt $pb:tt write $wp:tt $wb:tt
+        fields ($($param:ident),*) { $($body:tt)* } $($rest:tt)* }) => {{
+        bind_hook!(($($param),*) = ($o, $m));
+        $($body)*
+    }};
+}
+
 super::table::module_table!(module_fields);
-
-/// MODULE_DATA parsed as the data of one module type.
-enum ModuleData {
-    Hiwonder(HiwonderCommand),
-    Pca9685(Pca9685Command),
-    Ssd1306(Ssd1306Command),
-    Relay(RelayCommand),
-}
-
-impl ModuleData {
-    fn parse(module_type: ModuleType, data: &[u8]) -> Option<Self> {
-        match module_type {
-            ModuleType::HiwonderServo => HiwonderCommand::parse(data).ok().map(Self::Hiwonder),
-            ModuleType::Pca9685 => Pca9685Command::parse(data).ok().map(Self::Pca9685),
-            ModuleType::Ssd1306 => Ssd1306Command::parse(data).ok().map(Self::Ssd1306),
-            ModuleType::ShutdownRelay => RelayCommand::parse(data).ok().map(Self::Relay),
-        }
-    }
-}
-
-impl Visit for ModuleData {
-    fn visit(&self, o: &mut W<'_>) {
-        match self {
-            ModuleData::Hiwonder(m) => m.visit(o),
-            ModuleData::Pca9685(m) => o.objs("channels", &m.channels),
-            ModuleData::Ssd1306(m) => m.visit(o),
-            ModuleData::Relay(m) => o.s(
-                "subtype",
-                match m {
-                    RelayCommand::Start => "start",
-                    RelayCommand::Cancel => "cancel",
-                },
-            ),
-        }
-    }
-}
 
 /// A module data table's JSON fields: `subtype` names the row, then the
 /// `plain` rows' fields by their kind, the `custom` rows' by `visit_custom`.

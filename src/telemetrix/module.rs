@@ -27,6 +27,7 @@ macro_rules! modules {
             fields ($($ifp:ident),*) { $($ifa:tt)* }
             read ($($irp:ident),*) { $($irb:tt)* }
         }
+        data $data:ident $dsec:tt
         $(reports [$($rv:ident),+ $(,)?] {
             variants { $($rdecl:tt)* }
             len ($($lp:ident),*) { $($lb:tt)* }
@@ -83,6 +84,20 @@ macro_rules! modules {
                 }
             }
         }
+
+        $(
+            impl ModuleCommand for $data {
+                const MODULE_TYPE: ModuleType = ModuleType::$t;
+
+                fn to_data(&self) -> Result<Payload<COMMAND_PAYLOAD_MAX>, EncodeError> {
+                    data_of::<Self>(|w| module_data!(write (w, self) $dsec))
+                }
+
+                fn parse(data: &[u8]) -> Result<Self, Error> {
+                    module_data!(parse (data) $dsec)
+                }
+            }
+        )*
 
         impl<'a> ModuleNew<'a> {
             pub(crate) fn parse(r: &mut Reader<'a>) -> Result<Self, Error> {
@@ -174,6 +189,31 @@ macro_rules! modules {
             }
         }
     };
+}
+
+/// A module's MODULE_DATA codec: from its data table (`table`), or the
+/// row's own `parse` and `write` pieces.
+macro_rules! module_data {
+    (write ($w:ident, $value:ident) table) => {
+        $value.write_data($w)
+    };
+    (parse ($data:ident) table) => {
+        Self::parse_data($data)
+    };
+    (write $ctx:tt { parse $pp:tt $pb:tt write ($($param:ident),*) { $($body:tt)* } $($rest:tt)* }) => {{
+        bind_hook!(($($param),*) = $ctx);
+        $($body)*
+    }};
+    (parse ($data:ident) { parse ($($param:ident),*) { $($body:tt)* } $($rest:tt)* }) => {{
+        let mut r = data_reader($data);
+        let id = r.id();
+        let message = {
+            bind_hook!(($($param),*) = (&mut r, id));
+            $($body)*
+        };
+        r.end()?;
+        Ok(message)
+    }};
 }
 
 super::table::module_table!(modules);
@@ -373,18 +413,6 @@ super::table::hiwonder_table!(module_data_codec);
 
 const MAX_CENTIDEG: u16 = 24000;
 
-impl ModuleCommand for HiwonderCommand {
-    const MODULE_TYPE: ModuleType = ModuleType::HiwonderServo;
-
-    fn to_data(&self) -> Result<Payload<COMMAND_PAYLOAD_MAX>, EncodeError> {
-        data_of::<Self>(|w| self.write_data(w))
-    }
-
-    fn parse(data: &[u8]) -> Result<Self, Error> {
-        Self::parse_data(data)
-    }
-}
-
 /// One PCA9685 channel setting.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -406,49 +434,7 @@ pub struct Pca9685Command {
     pub channels: List<Pca9685Channel, 5>,
 }
 
-impl ModuleCommand for Pca9685Command {
-    const MODULE_TYPE: ModuleType = ModuleType::Pca9685;
-
-    fn to_data(&self) -> Result<Payload<COMMAND_PAYLOAD_MAX>, EncodeError> {
-        data_of::<Self>(|w| {
-            for c in &self.channels {
-                w.u8(c.channel);
-                w.u16(c.on);
-                w.u16(c.off);
-            }
-        })
-    }
-
-    fn parse(data: &[u8]) -> Result<Self, Error> {
-        let mut r = data_reader(data);
-        ensure(!data.is_empty(), r.id(), "channels")?;
-        let mut channels = List::new();
-        while r.remaining() > 0 {
-            let c = Pca9685Channel {
-                channel: r.u8()?,
-                on: r.u16()?,
-                off: r.u16()?,
-            };
-            ensure(c.channel <= 15, r.id(), "channel")?;
-            channels.push(c).map_err(|_| r.bad_length())?;
-        }
-        Ok(Pca9685Command { channels })
-    }
-}
-
 super::table::ssd1306_table!(module_data_codec);
-
-impl ModuleCommand for Ssd1306Command {
-    const MODULE_TYPE: ModuleType = ModuleType::Ssd1306;
-
-    fn to_data(&self) -> Result<Payload<COMMAND_PAYLOAD_MAX>, EncodeError> {
-        data_of::<Self>(|w| self.write_data(w))
-    }
-
-    fn parse(data: &[u8]) -> Result<Self, Error> {
-        Self::parse_data(data)
-    }
-}
 
 /// Shutdown relay data (module type 2), spec §7.4.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -458,25 +444,6 @@ pub enum RelayCommand {
     Start,
     /// `[0]`: cancel the countdown and re-enable the watchdog.
     Cancel,
-}
-
-impl ModuleCommand for RelayCommand {
-    const MODULE_TYPE: ModuleType = ModuleType::ShutdownRelay;
-
-    fn to_data(&self) -> Result<Payload<COMMAND_PAYLOAD_MAX>, EncodeError> {
-        data_of::<Self>(|w| w.flag(*self == RelayCommand::Start))
-    }
-
-    fn parse(data: &[u8]) -> Result<Self, Error> {
-        let mut r = data_reader(data);
-        let start = r.flag("start")?;
-        r.end()?;
-        Ok(if start {
-            RelayCommand::Start
-        } else {
-            RelayCommand::Cancel
-        })
-    }
 }
 
 /// A Hiwonder servo position in a positions report.

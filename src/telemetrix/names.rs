@@ -96,7 +96,8 @@ super::table::sensor_table!(sensor_names);
 
 /// `ModuleType`'s names, from the module table.
 macro_rules! module_names {
-    ($($(#[$tm:meta])* $n:literal $t:ident $name:literal init $init:tt $(reports $rvs:tt $reports:tt)?;)*) => {
+    ($($(#[$tm:meta])* $n:literal $t:ident $name:literal
+        init $init:tt data $data:ident $dsec:tt $(reports $rvs:tt $reports:tt)?;)*) => {
         named!(ModuleType, "module type", [$($name),*], join_names!($($name),*), ModuleType::ALL);
     };
 }

@@ -832,7 +832,8 @@ impl<'b> ModuleNew<'b> {
 /// The JSON members of a module's init and reports, from the module table.
 macro_rules! module_readers {
     ($($(#[$tm:meta])* $n:literal $t:ident $name:literal
-        init $init:tt $(reports [$($rv:ident),+ $(,)?] $reports:tt)?;)*) => {
+        init $init:tt data $data:ident $dsec:tt
+        $(reports [$($rv:ident),+ $(,)?] $reports:tt)?;)*) => {
         fn module_init<'b>(
             module_type: ModuleType,
             f: &mut Fields<'_>,
@@ -854,40 +855,34 @@ macro_rules! module_readers {
                 _ => return Err(format!("module type {module_type} sends no reports")),
             })
         }
+
+        /// Typed MODULE_DATA: the module's message, built into the data bytes
+        /// by the module (which checks it as its parser would).
+        fn module_data(
+            module_type: ModuleType,
+            f: &mut Fields<'_>,
+        ) -> Result<List<u8, COMMAND_PAYLOAD_MAX>, String> {
+            let data = match module_type {
+                $(ModuleType::$t => module_data_members!(f, $data, $dsec).to_data(),)*
+            };
+            data.map_err(|e| e.to_string())
+        }
     };
+}
+
+/// A module's MODULE_DATA members: its data table's, or the row's `read`.
+macro_rules! module_data_members {
+    ($f:ident, $data:ident, table) => {
+        $data::read_members($f)?
+    };
+    ($f:ident, $data:ident, { parse $pp:tt $pb:tt write $wp:tt $wb:tt fields $fp:tt $fb:tt
+        read ($($param:ident),*) { $($body:tt)* } }) => {{
+        bind_hook!(($($param),*) = ($f));
+        $($body)*
+    }};
 }
 
 super::table::module_table!(module_readers);
-
-/// Typed MODULE_DATA: the module's message, built into the data bytes by the
-/// module (which checks it as its parser would).
-fn module_data(
-    module_type: ModuleType,
-    f: &mut Fields<'_>,
-) -> Result<List<u8, COMMAND_PAYLOAD_MAX>, String> {
-    let data = match module_type {
-        ModuleType::HiwonderServo => HiwonderCommand::read_members(f)?.to_data(),
-        ModuleType::Pca9685 => {
-            let channels = objects(f, "channels", |c| {
-                Ok(Pca9685Channel {
-                    channel: u8_(c, "channel")?,
-                    on: u16_(c, "on")?,
-                    off: u16_(c, "off")?,
-                })
-            })?;
-            let channels = List::from_slice(&channels)
-                .map_err(|_| format!("`channels` holds {}, at most 5", channels.len()))?;
-            Pca9685Command { channels }.to_data()
-        }
-        ModuleType::Ssd1306 => Ssd1306Command::read_members(f)?.to_data(),
-        ModuleType::ShutdownRelay => match name(f, "subtype", &["start", "cancel"])? {
-            0 => RelayCommand::Start,
-            _ => RelayCommand::Cancel,
-        }
-        .to_data(),
-    };
-    data.map_err(|e| e.to_string())
-}
 
 /// A module data table's serde reader: `subtype` names the row, whose
 /// members are read by their kind (a `custom` row's by `read_custom`).

@@ -99,9 +99,10 @@
 //! [`SensorReading`](super::SensorReading) in `plain` fields or `custom`
 //! code. The module table (`module_table`) has a row per module type: the
 //! [`ModuleType`](super::ModuleType) and its names, its MODULE_NEW init
-//! ([`ModuleInit`](super::ModuleInit)) and the MODULE_REPORTs it sends
-//! ([`ModuleReport`](super::ModuleReport)), each a section with a `custom`
-//! row's pieces.
+//! ([`ModuleInit`](super::ModuleInit)), its MODULE_DATA's
+//! [`ModuleCommand`](super::ModuleCommand) type and the MODULE_REPORTs it
+//! sends ([`ModuleReport`](super::ModuleReport)), each a section with a
+//! `custom` row's pieces.
 
 /// Hand the command rows to `$callback!`, after `$extra` (in brackets) when
 /// given: a consumer that expands in expression position takes its
@@ -2281,8 +2282,11 @@ pub(crate) use sensor_readings;
 /// as declared, the `LEN` rule of a report of the type
 /// (`len(len, at) { … }`, `at(i)` the frame's byte `i` if known), and its
 /// code (`parse(r, id)` after the type byte, `write(w)`, `fields(view, w)`,
-/// `read(f, buf)`). A module's MODULE_DATA is its data table
-/// ([`hiwonder_table`], [`ssd1306_table`]) or its own type.
+/// `read(f, buf)`). Between them, `data Type` names its MODULE_DATA's
+/// [`ModuleCommand`](super::ModuleCommand) type: `table` for a type from a
+/// data table ([`hiwonder_table`], [`ssd1306_table`]), or its code
+/// (`parse(r, id)`, `write(w, data)`, `fields(w, data)` and `read(f)`, where
+/// `data` is the message).
 macro_rules! module_table {
     ($callback:ident) => {
         $callback! {
@@ -2339,6 +2343,40 @@ macro_rules! module_table {
                             },
                         }
                     }
+                }
+                data Pca9685Command {
+                    parse(r, id) {
+                        ensure(r.remaining() > 0, id, "channels")?;
+                        let mut channels = List::new();
+                        while r.remaining() > 0 {
+                            let c = Pca9685Channel { channel: r.u8()?, on: r.u16()?, off: r.u16()? };
+                            ensure(c.channel <= 15, id, "channel")?;
+                            channels.push(c).map_err(|_| r.bad_length())?;
+                        }
+                        Pca9685Command { channels }
+                    }
+                    write(w, data) {
+                        for c in &data.channels {
+                            w.u8(c.channel);
+                            w.u16(c.on);
+                            w.u16(c.off);
+                        }
+                    }
+                    fields(w, data) {
+                        w.objs("channels", &data.channels)
+                    }
+                    read(f) {
+                        let channels = objects(f, "channels", |c| {
+                            Ok(Pca9685Channel {
+                                channel: u8_(c, "channel")?,
+                                on: u16_(c, "on")?,
+                                off: u16_(c, "off")?,
+                            })
+                        })?;
+                        let channels = List::from_slice(&channels)
+                            .map_err(|_| format!("`channels` holds {}, at most 5", channels.len()))?;
+                        Pca9685Command { channels }
+                    }
                 };
             /// 1: Hiwonder serial bus servos.
             1 HiwonderServo "hiwonder_servo"
@@ -2385,6 +2423,7 @@ macro_rules! module_table {
                         }
                     }
                 }
+                data HiwonderCommand table
                 reports [
                     HiwonderPositions, HiwonderIdVerify, HiwonderRange, HiwonderOffset, HiwonderAdded
                 ] {
@@ -2578,6 +2617,31 @@ macro_rules! module_table {
                             wait_s: u8_(f, "wait_s")?,
                         }
                     }
+                }
+                data RelayCommand {
+                    parse(r, id) {
+                        if r.flag("start")? {
+                            RelayCommand::Start
+                        } else {
+                            RelayCommand::Cancel
+                        }
+                    }
+                    write(w, data) {
+                        w.flag(*data == RelayCommand::Start)
+                    }
+                    fields(w, data) {
+                        let subtype = match data {
+                            RelayCommand::Start => "start",
+                            RelayCommand::Cancel => "cancel",
+                        };
+                        w.s("subtype", subtype)
+                    }
+                    read(f) {
+                        match name(f, "subtype", &["start", "cancel"])? {
+                            0 => RelayCommand::Start,
+                            _ => RelayCommand::Cancel,
+                        }
+                    }
                 };
             /// 3: SSD1306 OLED display.
             3 Ssd1306 "ssd1306"
@@ -2619,6 +2683,7 @@ macro_rules! module_table {
                         }
                     }
                 }
+                data Ssd1306Command table
                 reports [Ssd1306Done, Ssd1306Disabled] {
                     variants {
                         /// SSD1306: a text or binary transfer completed.
