@@ -256,7 +256,7 @@ impl Visit for MessageBuf {
 }
 
 /// A command's payload fields, from the command table: the `plain` rows'
-/// fields by their kind, the `custom` rows by [`CommandView::visit_custom`].
+/// fields by their kind, the `custom` rows' by their `fields` pieces.
 macro_rules! command_fields {
     ($($(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+] len $lens:tt
         $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
@@ -359,7 +359,7 @@ macro_rules! visit_field {
 super::table::command_table!(command_fields);
 
 /// A report's payload fields, from the report table: the `plain` rows'
-/// fields by their kind, the `custom` rows by [`ReportView::visit_custom`].
+/// fields by their kind, the `custom` rows' by their `fields` pieces.
 macro_rules! report_fields {
     ($($(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt
         { $($name:literal [$($v:ident),+]),+ } $codec:ident { $($body:tt)* };)*) => {
@@ -500,7 +500,8 @@ macro_rules! module_data_fields {
 super::table::module_table!(module_fields);
 
 /// A module data table's JSON fields: `subtype` names the row, then the
-/// `plain` rows' fields by their kind, the `custom` rows' by `visit_custom`.
+/// `plain` rows' fields by their kind, the `custom` rows' by their `fields`
+/// pieces.
 macro_rules! module_data_fields {
     ($(#[$em:meta])* $enum:ident; $($(#[$vm:meta])* $n:literal $name:literal [$($v:ident),+]
         $codec:ident $($p:ident)? { $($body:tt)* };)*) => {

@@ -317,7 +317,7 @@ fn data_reader(data: &[u8]) -> Reader<'_> {
 
 /// A module data table's enum and its data's encode and parse: the `plain`
 /// rows' from their fields (a unit variant when a row has none), the
-/// `custom` rows' by the enum's `write_custom` and `parse_custom`.
+/// `custom` rows' by their `write` and `parse` pieces.
 macro_rules! module_data_codec {
     ($(#[$em:meta])* $enum:ident; $($rows:tt)*) => {
         module_data_codec!(@enum [$(#[$em])* $enum] [] $($rows)*);

@@ -885,7 +885,7 @@ macro_rules! module_data_members {
 super::table::module_table!(module_readers);
 
 /// A module data table's serde reader: `subtype` names the row, whose
-/// members are read by their kind (a `custom` row's by `read_custom`).
+/// members are read by their kind (a `custom` row's by its `read` piece).
 macro_rules! module_data_reader {
     ($(#[$em:meta])* $enum:ident; $($(#[$vm:meta])* $n:literal $name:literal [$($v:ident),+]
         $codec:ident $($p:ident)? { $($body:tt)* };)*) => {
