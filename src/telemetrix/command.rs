@@ -2,9 +2,7 @@
 
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
-use super::kind::{
-    bind_hook, check_row, field_type, read_field, row_piece, write_field, write_row,
-};
+use super::kind::{check_row, field_type, parse_row, row_piece, write_field, write_row};
 use super::list::List;
 use super::module::{ModuleNew, MODULE_INIT_MAX};
 use super::quirk::command_quirk;
@@ -80,6 +78,16 @@ macro_rules! command_codec {
                 }
             }
         }
+
+        /// Parse a command's payload: an arm per row of the command table,
+        /// in one `match` so that the Pico links one compact function.
+        fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>, Error> {
+            let cmd = r.id();
+            Ok(match cmd {
+                $($n => parse_row!((dialect, &mut *r, cmd), r, cmd, Command, $codec $($p)? { $($body)* }),)*
+                _ => return Err(Error::UnknownId { id: cmd }),
+            })
+        }
     };
 }
 
@@ -90,42 +98,6 @@ macro_rules! len_range {
     };
     ($dialect:ident, { $($arms:tt)* }) => {
         match $dialect { $($arms)* }
-    };
-}
-
-/// The parser's `match` on the command id: an arm per row (a `plain` row's
-/// fields read by their kind, a `custom` row's `parse` code), then the
-/// unknown ids, in one `match` so that the Pico links one compact function.
-macro_rules! parse_match {
-    ([($dialect:ident, $r:ident, $cmd:ident) { $($custom:tt)* }] $($rows:tt)*) => {
-        parse_match!(@rows ($dialect, $r, $cmd) [$($custom)*] [] $($rows)*)
-    };
-    (@rows ($dialect:ident, $r:ident, $cmd:ident) $custom:tt [$($arms:tt)*]
-        $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
-        len $lens:tt custom { variants $vars:tt parse ($($param:ident),*) { $($body:tt)* } $($hooks:tt)* };
-        $($rest:tt)*) => {
-        parse_match!(@rows ($dialect, $r, $cmd) $custom [
-            $($arms)*
-            $n => {
-                bind_hook!(($($param),*) = ($dialect, &mut *$r, $cmd));
-                $($body)*
-            }
-        ] $($rest)*)
-    };
-    (@rows ($dialect:ident, $r:ident, $cmd:ident) $custom:tt [$($arms:tt)*]
-        $(#[$vm:meta])* $n:literal $id:ident $name:literal [$($v:ident),+] in [$($d:ident),+]
-        len $lens:tt plain $p:ident { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? };
-        $($rest:tt)*) => {
-        parse_match!(@rows ($dialect, $r, $cmd) $custom [
-            $($arms)*
-            $n => Command::$p { $($f: read_field!($r, $cmd, $f, $key, $kind $(($($arg)*))?),)* },
-        ] $($rest)*)
-    };
-    (@rows ($dialect:ident, $r:ident, $cmd:ident) [$($custom:tt)*] [$($arms:tt)*]) => {
-        match $cmd {
-            $($arms)*
-            $($custom)*
-        }
     };
 }
 
@@ -431,16 +403,6 @@ fn at_most(len: usize, max: usize) -> Result<(), EncodeError> {
 fn rgb(r: &mut Reader<'_>) -> Result<Rgb, Error> {
     let [r_, g, b] = r.array()?;
     Ok(Rgb { r: r_, g, b })
-}
-
-/// Parse a command's payload: every arm comes from the command table.
-fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Command<'a>, Error> {
-    let cmd = r.id();
-    Ok(
-        super::table::command_table!(parse_match, (dialect, r, cmd) {
-            _ => return Err(Error::UnknownId { id: cmd }),
-        }),
-    )
 }
 
 impl<'a> Command<'a> {

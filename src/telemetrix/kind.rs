@@ -89,10 +89,10 @@ macro_rules! read_field {
         $r.f32()?
     };
     ($r:ident, $cmd:ident, $f:ident, $key:literal, f32s($n:literal)) => {
-        read_field!(@each $r, [0.0; $n], f32)
+        $crate::telemetrix::kind::read_field!(@each $r, [0.0; $n], f32)
     };
     ($r:ident, $cmd:ident, $f:ident, $key:literal, i16s($n:literal)) => {
-        read_field!(@each $r, [0; $n], i16)
+        $crate::telemetrix::kind::read_field!(@each $r, [0; $n], i16)
     };
     // An array, each value read by the reader's method `$read`.
     (@each $r:ident, $values:expr, $read:ident) => {{
@@ -186,6 +186,27 @@ macro_rules! write_field {
     // u8, pin, range
     ($w:ident, $f:ident, $kind:ident $($args:tt)?) => {
         $w.u8($f)
+    };
+}
+
+/// Parse a row's payload, as an expression: a `plain` row's fields read and
+/// checked by their kinds from the reader `$r` (`$id` in errors; its variant
+/// of `$enum` named after `plain`, or in brackets by a report row), a
+/// `custom` row's `parse` piece with its parameters bound to `$ctx`.
+macro_rules! parse_row {
+    ($ctx:tt, $r:ident, $id:ident, $enum:ident, $([$($vs:ident)+])? custom {
+        variants $vars:tt parse ($($param:ident),*) { $($body:tt)* } $($pieces:tt)*
+    }) => {{
+        $crate::telemetrix::kind::bind_hook!(($($param),*) = $ctx);
+        $($body)*
+    }};
+    ($ctx:tt, $r:ident, $id:ident, $enum:ident, [$p:ident] plain $body:tt) => {
+        $crate::telemetrix::kind::parse_row!($ctx, $r, $id, $enum, plain $p $body)
+    };
+    ($ctx:tt, $r:ident, $id:ident, $enum:ident, plain $p:ident {
+        $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)?
+    }) => {
+        $enum::$p { $($f: $crate::telemetrix::kind::read_field!($r, $id, $f, $key, $kind $(($($arg)*))?),)* }
     };
 }
 
@@ -314,6 +335,6 @@ macro_rules! bind_hook {
 }
 
 pub(crate) use {
-    bind_hook, check_field, check_row, field_type, read_field, row_piece, section_piece,
+    bind_hook, check_field, check_row, field_type, parse_row, read_field, row_piece, section_piece,
     write_field, write_row,
 };

@@ -8,7 +8,7 @@
 //! and are decoded to [`ModuleReport`].
 
 use super::error::{ensure, Error};
-use super::kind::{bind_hook, field_type, read_field, write_field, write_row};
+use super::kind::{bind_hook, field_type, parse_row, write_field, write_row};
 use super::list::{List, Payload};
 use super::wire::{command_id, Reader, Writer, COMMAND_PAYLOAD_MAX};
 use crate::EncodeError;
@@ -367,7 +367,7 @@ macro_rules! module_data_codec {
                 let mut r = data_reader(data);
                 let id = r.id();
                 let message = match r.u8()? {
-                    $($n => data_row!(r, id, $n, $enum, $codec $($p)? { $($body)* }),)*
+                    $($n => parse_row!((&mut r, id), r, id, $enum, $codec $($p)? { $($body)* }),)*
                     _ => {
                         return Err(Error::OutOfRange {
                             id,
@@ -379,21 +379,6 @@ macro_rules! module_data_codec {
                 Ok(message)
             }
         }
-    };
-}
-
-/// Parse one row of a module data table after its subtype byte.
-macro_rules! data_row {
-    ($r:ident, $id:ident, $n:literal, $enum:ident, custom {
-        variants $vars:tt parse ($($param:ident),*) { $($body:tt)* } $($hooks:tt)*
-    }) => {{
-        bind_hook!(($($param),*) = (&mut $r, $id));
-        $($body)*
-    }};
-    ($r:ident, $id:ident, $n:literal, $enum:ident, plain $p:ident {
-        $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)?
-    }) => {
-        $enum::$p { $($f: read_field!($r, $id, $f, $key, $kind $(($($arg)*))?),)* }
     };
 }
 

@@ -3,7 +3,7 @@
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
 use super::fast;
-use super::kind::{bind_hook, field_type, read_field, row_piece, write_field, write_row};
+use super::kind::{bind_hook, field_type, parse_row, row_piece, write_field, write_row};
 use super::module::{module_report_len_ok, ModuleReport};
 use super::quirk::report_quirk;
 use super::sensor::{SensorReading, SensorType};
@@ -284,41 +284,14 @@ macro_rules! report_codec {
                 }
             }
         }
-    };
-}
 
-/// The parser's `match` on the report id: an arm per row (a `plain` row's
-/// fields read by their kind, a `custom` row's `parse` code), then the
-/// unknown ids.
-macro_rules! parse_report_match {
-    ([($dialect:ident, $r:ident, $rid:ident) { $($custom:tt)* }] $($rows:tt)*) => {
-        parse_report_match!(@rows ($dialect, $r, $rid) [$($custom)*] [] $($rows)*)
-    };
-    (@rows ($dialect:ident, $r:ident, $rid:ident) $custom:tt [$($arms:tt)*]
-        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt { $($name:literal [$($v:ident),+]),+ }
-        custom { variants $vars:tt parse ($($param:ident),*) { $($body:tt)* } $($hooks:tt)* };
-        $($rest:tt)*) => {
-        parse_report_match!(@rows ($dialect, $r, $rid) $custom [
-            $($arms)*
-            $n => {
-                bind_hook!(($($param),*) = ($dialect, &mut *$r, $rid));
-                $($body)*
-            }
-        ] $($rest)*)
-    };
-    (@rows ($dialect:ident, $r:ident, $rid:ident) $custom:tt [$($arms:tt)*]
-        $(#[$m:meta])* $n:literal $id:ident in [$($d:ident),+] len $rlen:tt { $name:literal [$p:ident] }
-        plain { $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)? };
-        $($rest:tt)*) => {
-        parse_report_match!(@rows ($dialect, $r, $rid) $custom [
-            $($arms)*
-            $n => Report::$p { $($f: read_field!($r, $rid, $f, $key, $kind $(($($arg)*))?),)* },
-        ] $($rest)*)
-    };
-    (@rows ($dialect:ident, $r:ident, $rid:ident) [$($custom:tt)*] [$($arms:tt)*]) => {
-        match $rid {
-            $($arms)*
-            $($custom)*
+        /// Parse a report's payload: an arm per row of the report table.
+        fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Report<'a>, Error> {
+            let rid = r.id();
+            Ok(match rid {
+                $($n => parse_row!((dialect, &mut *r, rid), r, rid, Report, [$($($v)+)+] $codec { $($body)* }),)*
+                _ => return Err(Error::UnknownId { id: rid }),
+            })
         }
     };
 }
@@ -468,15 +441,6 @@ fn sonar_cm(r: &mut Reader<'_>) -> Result<u16, Error> {
     let ok = cm < SONAR_CM_LIMIT || (SONAR_NO_ECHO..=SONAR_STALE).contains(&cm);
     ensure(ok, r.id(), "cm")?;
     Ok(cm)
-}
-
-fn parse_payload<'a>(dialect: Dialect, r: &mut Reader<'a>) -> Result<Report<'a>, Error> {
-    let rid = r.id();
-    Ok(
-        super::table::report_table!(parse_report_match, (dialect, r, rid) {
-            _ => return Err(Error::UnknownId { id: rid }),
-        }),
-    )
 }
 
 impl<'a> Report<'a> {

@@ -2,7 +2,7 @@
 
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
-use super::kind::{bind_hook, field_type, read_field, write_field, write_row};
+use super::kind::{field_type, parse_row, write_field, write_row};
 use super::list::List;
 use super::table::sensor_readings;
 use super::wire::{Reader, Writer};
@@ -247,7 +247,9 @@ macro_rules! sensor_reading_codec {
             ) -> Result<Self, Error> {
                 let id = r.id();
                 Ok(match sensor_type {
-                    $(SensorType::$t => reading_row!(r, id, dialect, $t, $codec { $($body)* }),)*
+                    $(SensorType::$t => {
+                        parse_row!((&mut *r, dialect), r, id, SensorReading, [$t] $codec { $($body)* })
+                    })*
                     #[allow(unreachable_patterns)]
                     _ => return Err(Error::OutOfRange { id, field: "sensor_type" }),
                 })
@@ -261,21 +263,6 @@ macro_rules! sensor_reading_codec {
                 }
             }
         }
-    };
-}
-
-/// Parse one reading of the sensor table.
-macro_rules! reading_row {
-    ($r:ident, $id:ident, $dialect:ident, $t:ident, custom {
-        variants $vars:tt parse ($($param:ident),*) { $($body:tt)* } $($pieces:tt)*
-    }) => {{
-        bind_hook!(($($param),*) = (&mut *$r, $dialect));
-        $($body)*
-    }};
-    ($r:ident, $id:ident, $dialect:ident, $t:ident, plain {
-        $($(#[$fm:meta])* $f:ident : $kind:ident $(($($arg:tt)*))? $key:literal),* $(,)?
-    }) => {
-        SensorReading::$t { $($f: read_field!($r, $id, $f, $key, $kind $(($($arg)*))?),)* }
     };
 }
 

@@ -75,9 +75,10 @@
 //! macro: each consumer (the id constants in `wire`, the enum, parser and
 //! writer in `command`, the fields in `fields`, the names in `names`, the
 //! serde reader in `schema`) expands the rows where its private helpers are
-//! in scope. The parser's consumer is a muncher that gives every row one
-//! arm of one `match`: split in two functions the Pico's command decoder
-//! linked 9,096 B instead of 7,736 B (`python3 size/report.py`). A
+//! in scope. Every row, `plain` or `custom`, is one arm of the parser's one
+//! `match` (`parse_row!` in `kind`, shared by all tables): split in two
+//! functions the Pico's command decoder linked 9,096 B instead of 7,736 B
+//! (`python3 size/report.py`). A
 //! `macro_rules!` table rather than a generator: it needs no build script, no
 //! checked-in output to keep current and no extra CI step, and the rows are
 //! read by the compiler itself, so a typo is a compile error at the row.
@@ -104,13 +105,10 @@
 //! sends ([`ModuleReport`](super::ModuleReport)), each a section with a
 //! `custom` row's pieces.
 
-/// Hand the command rows to `$callback!`, after `$extra` (in brackets) when
-/// given: a consumer that expands in expression position takes its
-/// call-site names and its last arms there.
+/// Hand the command rows to `$callback!`.
 macro_rules! command_table {
-    ($callback:ident $(, $($extra:tt)+)?) => {
+    ($callback:ident) => {
         $callback! {
-            $([$($extra)+])?
             /// 0 SERIAL_LOOP_BACK: the Pico echoes `byte` in report 0.
             0 SERIAL_LOOP_BACK "serial_loop_back" [LoopBack] in [Mirte13, Mirte12, Upstream11] len (2, 2)
                 plain LoopBack {
@@ -1064,8 +1062,7 @@ macro_rules! command_table {
 
 pub(crate) use command_table;
 
-/// Hand the report rows to `$callback!`, after `$extra` (in brackets) when
-/// given. A row gives a report's id (spec §5), the name of its
+/// Hand the report rows to `$callback!`. A row gives a report's id (spec §5), the name of its
 /// [`report_id`](super::report_id) constant, the dialects that define it,
 /// its `type` names with the [`Report`](super::Report) variants each names
 /// (report 8 has one per dialect family), and its payload, as in the
@@ -1076,9 +1073,8 @@ pub(crate) use command_table;
 /// `quirk(dialect, frame)`). Its `len` rule gives `report_len_ok`, which
 /// looks at a frame's first bytes to end a streamed frame early.
 macro_rules! report_table {
-    ($callback:ident $(, $($extra:tt)+)?) => {
+    ($callback:ident) => {
         $callback! {
-            $([$($extra)+])?
             /// 0 SERIAL_LOOP_BACK_REPORT: loopback echo.
             0 SERIAL_LOOP_BACK in [Mirte13, Mirte12, Upstream11] len { 2 }
                 { "serial_loop_back_report" [LoopBack] } plain {
