@@ -2,7 +2,7 @@
 
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
-use super::kind::{check_row, field_type, parse_row, row_piece, write_field, write_row};
+use super::kind::{check_row, field_type, parse_row, piece, write_field, write_row};
 use super::list::List;
 use super::module::{ModuleNew, MODULE_INIT_MAX};
 use super::quirk::command_quirk;
@@ -65,7 +65,7 @@ macro_rules! command_codec {
             pub(crate) const fn home_dialects(&self) -> &'static [Dialect] {
                 match *self {
                     $($(Command::$v { .. })|+ => {
-                        row_piece!(home (self) { &[$(Dialect::$d),+] }, $codec $($p)? { $($body)* })
+                        piece!(home (self) expr { &[$(Dialect::$d),+] }, $codec $($p)? { $($body)* })
                     })*
                 }
             }

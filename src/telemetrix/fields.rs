@@ -6,7 +6,7 @@ use core::fmt;
 
 use super::buf::{CommandBuf, Message, MessageBuf, ReportBuf};
 use super::command::{Command, ModifyReporting, PinMode, PwmPin, Rgb};
-use super::kind::{bind_hook, section_piece};
+use super::kind::{bind_hook, piece};
 use super::list::List;
 use super::module::{
     HiwonderCommand, ModuleCommand, ModuleInit, ModuleNew, ModuleReport, ModuleType,
@@ -447,7 +447,9 @@ macro_rules! module_fields {
         impl Visit for ModuleInit<'_> {
             fn visit(&self, o: &mut W<'_>) {
                 match *self {
-                    $(ModuleInit::$t { .. } => section_piece!(fields (self, o) (*self), $init),)*
+                    $(ModuleInit::$t { .. } => {
+                        piece!(fields (self, o) (match *self) { compile_error!("an init without fields") }, $init)
+                    })*
                 }
             }
         }
@@ -456,7 +458,7 @@ macro_rules! module_fields {
             fn visit(&self, o: &mut W<'_>) {
                 match *self {
                     $($($(ModuleReport::$rv { .. })|+ => {
-                        section_piece!(fields (self, o) (*self), $reports)
+                        piece!(fields (self, o) (match *self) { compile_error!("reports without fields") }, $reports)
                     })?)*
                 }
             }
@@ -478,7 +480,7 @@ macro_rules! module_fields {
         impl Visit for ModuleData {
             fn visit(&self, o: &mut W<'_>) {
                 match self {
-                    $(ModuleData::$t(m) => module_data_fields!(o, m, $dsec),)*
+                    $(ModuleData::$t(m) => data_fields!(o, m, $dsec),)*
                 }
             }
         }
@@ -486,15 +488,13 @@ macro_rules! module_fields {
 }
 
 /// A module's MODULE_DATA fields: its data table's, or the row's `fields`.
-macro_rules! module_data_fields {
+macro_rules! data_fields {
     ($o:ident, $m:ident, table) => {
         $m.visit($o)
     };
-    ($o:ident, $m:ident, { parse $pp:tt $pb:tt write $wp:tt $wb:tt
-        fields ($($param:ident),*) { $($body:tt)* } $($rest:tt)* }) => {{
-        bind_hook!(($($param),*) = ($o, $m));
-        $($body)*
-    }};
+    ($o:ident, $m:ident, $section:tt) => {
+        piece!(fields ($o, $m) expr { compile_error!("data without fields") }, $section)
+    };
 }
 
 super::table::module_table!(module_fields);

@@ -241,7 +241,7 @@ macro_rules! write_row {
 /// `check` piece, or the maxima a `plain` row's field kinds give.
 macro_rules! check_row {
     ($value:ident, $dialect:ident, $enum:ident, custom $body:tt) => {
-        $crate::telemetrix::kind::row_piece!(check ($value, $dialect) { Ok(()) }, custom $body)
+        $crate::telemetrix::kind::piece!(check ($value, $dialect) expr { Ok(()) }, custom $body)
     };
     ($value:ident, $dialect:ident, $enum:ident, plain $p:ident {}) => {
         Ok(())
@@ -270,58 +270,59 @@ macro_rules! check_field {
     };
 }
 
-/// A `custom` row's optional piece `check`, `home` or `quirk`, its
-/// parameters bound to the values in `$ctx`, or `$default` for a row
-/// without one (and every `plain` row).
-macro_rules! row_piece {
-    ($name:ident $ctx:tt $default:block, custom { variants $vars:tt $($piece:ident $params:tt $body:tt)* }) => {
-        $crate::telemetrix::kind::row_piece!(@find $name $ctx $default, $($piece $params $body)*)
-    };
-    ($name:ident $ctx:tt $default:block, plain $($row:tt)*) => {
+/// The piece `$name` (`check`, `home`, `quirk`, `fields` or `read`) of a
+/// `custom` row or of a section of the module table (`{ variants { … }
+/// pieces… }`, or a `data` section's pieces alone), its parameters bound to
+/// the values in `$ctx`: an expression (`expr`), or the arms of a `match` on
+/// a value (`(match value)`, with a catch-all arm). A `plain` row, or a
+/// section without the piece, gives `$default` (a `compile_error!` where
+/// the piece is required).
+macro_rules! piece {
+    ($name:ident $ctx:tt $how:tt $default:block, plain $($row:tt)*) => {
         $default
     };
-    (@find check $ctx:tt $default:block, check ($($param:ident),*) { $($body:tt)* } $($rest:tt)*) => {{
-        $crate::telemetrix::kind::bind_hook!(($($param),*) = $ctx);
-        $($body)*
-    }};
-    (@find home $ctx:tt $default:block, home ($($param:ident),*) { $($body:tt)* } $($rest:tt)*) => {{
-        $crate::telemetrix::kind::bind_hook!(($($param),*) = $ctx);
-        $($body)*
-    }};
-    (@find quirk $ctx:tt $default:block, quirk ($($param:ident),*) { $($body:tt)* } $($rest:tt)*) => {{
-        $crate::telemetrix::kind::bind_hook!(($($param),*) = $ctx);
-        $($body)*
-    }};
-    (@find $name:ident $ctx:tt $default:block, $piece:ident $params:tt $body:tt $($rest:tt)*) => {
-        $crate::telemetrix::kind::row_piece!(@find $name $ctx $default, $($rest)*)
+    ($name:ident $ctx:tt $how:tt $default:block, custom $section:tt) => {
+        $crate::telemetrix::kind::piece!($name $ctx $how $default, $section)
     };
-    (@find $name:ident $ctx:tt $default:block,) => {
+    ($name:ident $ctx:tt $how:tt $default:block,
+        { variants $vars:tt $($piece:ident $params:tt $body:tt)* }) => {
+        $crate::telemetrix::kind::piece!(@find $name $ctx $how $default, $($piece $params $body)*)
+    };
+    ($name:ident $ctx:tt $how:tt $default:block, { $($piece:ident $params:tt $body:tt)* }) => {
+        $crate::telemetrix::kind::piece!(@find $name $ctx $how $default, $($piece $params $body)*)
+    };
+    (@find check $ctx:tt $how:tt $default:block, check $params:tt $body:tt $($rest:tt)*) => {
+        $crate::telemetrix::kind::piece!(@emit $ctx $how $params $body)
+    };
+    (@find home $ctx:tt $how:tt $default:block, home $params:tt $body:tt $($rest:tt)*) => {
+        $crate::telemetrix::kind::piece!(@emit $ctx $how $params $body)
+    };
+    (@find quirk $ctx:tt $how:tt $default:block, quirk $params:tt $body:tt $($rest:tt)*) => {
+        $crate::telemetrix::kind::piece!(@emit $ctx $how $params $body)
+    };
+    (@find fields $ctx:tt $how:tt $default:block, fields $params:tt $body:tt $($rest:tt)*) => {
+        $crate::telemetrix::kind::piece!(@emit $ctx $how $params $body)
+    };
+    (@find read $ctx:tt $how:tt $default:block, read $params:tt $body:tt $($rest:tt)*) => {
+        $crate::telemetrix::kind::piece!(@emit $ctx $how $params $body)
+    };
+    (@find $name:ident $ctx:tt $how:tt $default:block, $piece:ident $params:tt $body:tt $($rest:tt)*) => {
+        $crate::telemetrix::kind::piece!(@find $name $ctx $how $default, $($rest)*)
+    };
+    (@find $name:ident $ctx:tt $how:tt $default:block,) => {
         $default
     };
-}
-
-/// The `fields` or `read` piece of a section of the module table (`init
-/// { variants { … } parse(…) { … } … }`, or `reports`), its parameters bound
-/// to the values in `$ctx`: `read` as an expression, `fields` as the arms of
-/// a `match` on `$value` (with a catch-all arm).
-macro_rules! section_piece {
-    ($name:ident $ctx:tt $value:tt, { variants $vars:tt $($piece:ident $params:tt $body:tt)* }) => {
-        $crate::telemetrix::kind::section_piece!(@find $name $ctx $value, $($piece $params $body)*)
-    };
-    (@find read $ctx:tt $value:tt, read ($($param:ident),*) { $($body:tt)* } $($rest:tt)*) => {{
+    (@emit $ctx:tt expr ($($param:ident),*) { $($body:tt)* }) => {{
         $crate::telemetrix::kind::bind_hook!(($($param),*) = $ctx);
         $($body)*
     }};
-    (@find fields $ctx:tt ($value:expr), fields ($($param:ident),*) { $($body:tt)* } $($rest:tt)*) => {{
+    (@emit $ctx:tt (match $value:expr) ($($param:ident),*) { $($body:tt)* }) => {{
         $crate::telemetrix::kind::bind_hook!(($($param),*) = $ctx);
         match $value {
             $($body)*
             _ => {}
         }
     }};
-    (@find $name:ident $ctx:tt $value:tt, $piece:ident $params:tt $body:tt $($rest:tt)*) => {
-        $crate::telemetrix::kind::section_piece!(@find $name $ctx $value, $($rest)*)
-    };
 }
 
 /// Bind a `custom` row's hook parameters (the names the row's code uses,
@@ -335,6 +336,6 @@ macro_rules! bind_hook {
 }
 
 pub(crate) use {
-    bind_hook, check_field, check_row, field_type, parse_row, read_field, row_piece, section_piece,
-    write_field, write_row,
+    bind_hook, check_field, check_row, field_type, parse_row, piece, read_field, write_field,
+    write_row,
 };

@@ -4,7 +4,7 @@
 
 use super::command::Command;
 use super::dialect::Dialect;
-use super::kind::row_piece;
+use super::kind::piece;
 use super::report::Report;
 use super::wire::{MAX_COMMAND_FRAME, MAX_REPORT_FRAME};
 use super::InDialect;
@@ -131,7 +131,7 @@ macro_rules! quirk_fn {
         /// from its bytes by the `quirk` rule of its table row.
         pub(crate) fn $fn(dialect: Dialect, frame: &[u8]) -> Option<Quirk> {
             match *frame.get(1)? {
-                $($n => row_piece!(quirk (dialect, frame) { None }, $codec $body),)*
+                $($n => piece!(quirk (dialect, frame) expr { None }, $codec $body),)*
                 _ => None,
             }
         }

@@ -3,7 +3,7 @@
 use super::dialect::Dialect;
 use super::error::{ensure, Error};
 use super::fast;
-use super::kind::{bind_hook, field_type, parse_row, row_piece, write_field, write_row};
+use super::kind::{bind_hook, field_type, parse_row, piece, write_field, write_row};
 use super::module::{module_report_len_ok, ModuleReport};
 use super::quirk::report_quirk;
 use super::sensor::{SensorReading, SensorType};
@@ -269,7 +269,7 @@ macro_rules! report_codec {
             pub(crate) const fn home_dialects(&self) -> &'static [Dialect] {
                 match *self {
                     $($($(Report::$v { .. })|+)|+ => {
-                        row_piece!(home (self) { &[$(Dialect::$d),+] }, $codec { $($body)* })
+                        piece!(home (self) expr { &[$(Dialect::$d),+] }, $codec { $($body)* })
                     })*
                     Report::Unknown { .. } => &Dialect::ALL,
                 }

@@ -19,7 +19,7 @@ use super::command::{
 use super::dialect::Dialect;
 use super::error::Error;
 use super::fields::{Visit, V, W};
-use super::kind::{bind_hook, section_piece};
+use super::kind::{bind_hook, piece};
 use super::list::List;
 use super::module::{
     HiwonderCommand, ModuleCommand, ModuleInit, ModuleNew, ModuleReport, ModuleType,
@@ -840,7 +840,9 @@ macro_rules! module_readers {
             buf: &'b mut Vec<u8>,
         ) -> Result<ModuleInit<'b>, String> {
             Ok(match module_type {
-                $(ModuleType::$t => section_piece!(read (f, buf) (), $init),)*
+                $(ModuleType::$t => {
+                    piece!(read (f, buf) expr { compile_error!("an init without read") }, $init)
+                })*
             })
         }
 
@@ -850,7 +852,9 @@ macro_rules! module_readers {
             buf: &'b mut Vec<u8>,
         ) -> Result<ModuleReport<'b>, String> {
             Ok(match module_type {
-                $($(ModuleType::$t => section_piece!(read (f, buf) (), $reports),)?)*
+                $($(ModuleType::$t => {
+                    piece!(read (f, buf) expr { compile_error!("reports without read") }, $reports)
+                })?)*
                 // The types without reports.
                 _ => return Err(format!("module type {module_type} sends no reports")),
             })
@@ -875,11 +879,9 @@ macro_rules! module_data_members {
     ($f:ident, $data:ident, table) => {
         $data::read_members($f)?
     };
-    ($f:ident, $data:ident, { parse $pp:tt $pb:tt write $wp:tt $wb:tt fields $fp:tt $fb:tt
-        read ($($param:ident),*) { $($body:tt)* } }) => {{
-        bind_hook!(($($param),*) = ($f));
-        $($body)*
-    }};
+    ($f:ident, $data:ident, $section:tt) => {
+        piece!(read ($f) expr { compile_error!("data without read") }, $section)
+    };
 }
 
 super::table::module_table!(module_readers);
