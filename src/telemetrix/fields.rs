@@ -335,6 +335,9 @@ macro_rules! visit_field {
     ($w:ident, $f:ident, $key:literal, i16) => {
         $w.i($key, $f)
     };
+    ($w:ident, $f:ident, $key:literal, type_check($($names:tt)*)) => {
+        $w.type_byte($key, $f, $($names)*)
+    };
     ($w:ident, $f:ident, $key:literal, i8) => {
         $w.i($key, $f)
     };

@@ -79,6 +79,10 @@ macro_rules! read_field {
     ($r:ident, $cmd:ident, $f:ident, $key:literal, i16) => {
         $r.i16()?
     };
+    ($r:ident, $cmd:ident, $f:ident, $key:literal, type_check $names:tt) => {{
+        ensure($r.u8()? == 0, $cmd, "subtype")?;
+        $r.u8()?
+    }};
     ($r:ident, $cmd:ident, $f:ident, $key:literal, i8) => {
         $r.i8()?
     };
@@ -164,6 +168,9 @@ macro_rules! write_field {
     };
     ($w:ident, $f:ident, i16) => {
         $w.i16($f)
+    };
+    ($w:ident, $f:ident, type_check $names:tt) => {
+        $w.bytes(&[0, $f])
     };
     ($w:ident, $f:ident, i8) => {
         $w.i8($f)

@@ -718,6 +718,9 @@ macro_rules! read_member {
     ($fields:ident, $buf:ident, $key:literal, i16) => {
         i16_($fields, $key)?
     };
+    ($fields:ident, $buf:ident, $key:literal, type_check($($names:tt)*)) => {
+        type_byte($fields, $key, $($names)*)?
+    };
     ($fields:ident, $buf:ident, $key:literal, i8) => {
         i8_($fields, $key)?
     };

@@ -67,6 +67,7 @@
 //! | `rest`          | `&[u8]`| every byte left                | array           |
 //! | `i16`           | `i16`  | two bytes, big-endian          | number          |
 //! | `u16_max(max)`  | `u16`  | two bytes, big-endian, `<= max` | number         |
+//! | `type_check(names)` | `u8` | `0` (a check's subtype), then a type byte | its name in `names`, or its number |
 //!
 //! A row has at most one `counted` field (the serde reader borrows one buffer
 //! for it), and a `trailing_flag` only last.
@@ -1633,43 +1634,13 @@ macro_rules! report_table {
                         }
                     }
                 };
-            /// 21 SENSOR_MAIN_REPORT.
+            /// 21 SENSOR_MAIN_REPORT (mirte 1.3): answer to a sensor check.
             21 SENSOR_MAIN in [Mirte13] len { 4 }
-                { "sensor_main_report" [SensorSupported] } custom {
-                    variants {
-                        /// 21 (mirte 1.3): answer to a sensor check.
-                        SensorSupported {
-                            /// The type asked about.
-                            sensor_type: u8,
-                            /// Supported.
-                            supported: bool,
-                        },
-                    }
-                    parse(dialect, r, rid) {
-                        ensure(r.u8()? == 0, rid, "subtype")?;
-                        Report::SensorSupported {
-                            sensor_type: r.u8()?,
-                            supported: r.flag("supported")?,
-                        }
-                    }
-                    write(w, dialect) {
-                        Report::SensorSupported { sensor_type, supported } => {
-                            w.bytes(&[0, sensor_type]);
-                            w.flag(supported);
-                        }
-                    }
-                    fields(view, w) {
-                        Report::SensorSupported { sensor_type, supported } => {
-                            w.type_byte("sensor_type", sensor_type, SensorType::NAMES);
-                            w.flag("supported", supported);
-                        }
-                    }
-                    read(f, dialect, buf, kind) {
-                        Report::SensorSupported {
-                            sensor_type: type_byte(f, "sensor_type", SensorType::NAMES)?,
-                            supported: flag(f, "supported")?,
-                        }
-                    }
+                { "sensor_main_report" [SensorSupported] } plain {
+                    /// The type asked about.
+                    sensor_type: type_check(SensorType::NAMES) "sensor_type",
+                    /// Supported.
+                    supported: flag "supported",
                 };
             /// 32 PONG_REPORT (mirte): answer to PING.
             32 PONG in [Mirte13, Mirte12] len { 3 }
@@ -1679,43 +1650,13 @@ macro_rules! report_table {
                     /// Random per boot, 0..=99: a change means the Pico rebooted.
                     boot_id: range(0, 99) "boot_id",
                 };
-            /// 33 MODULE_MAIN_REPORT.
+            /// 33 MODULE_MAIN_REPORT (mirte 1.3): answer to a module check.
             33 MODULE_MAIN in [Mirte13] len { 4 }
-                { "module_main_report" [ModuleSupported] } custom {
-                    variants {
-                        /// 33 (mirte 1.3): answer to a module check.
-                        ModuleSupported {
-                            /// The type asked about.
-                            module_type: u8,
-                            /// Supported.
-                            supported: bool,
-                        },
-                    }
-                    parse(dialect, r, rid) {
-                        ensure(r.u8()? == 0, rid, "subtype")?;
-                        Report::ModuleSupported {
-                            module_type: r.u8()?,
-                            supported: r.flag("supported")?,
-                        }
-                    }
-                    write(w, dialect) {
-                        Report::ModuleSupported { module_type, supported } => {
-                            w.bytes(&[0, module_type]);
-                            w.flag(supported);
-                        }
-                    }
-                    fields(view, w) {
-                        Report::ModuleSupported { module_type, supported } => {
-                            w.type_byte("module_type", module_type, ModuleType::NAMES);
-                            w.flag("supported", supported);
-                        }
-                    }
-                    read(f, dialect, buf, kind) {
-                        Report::ModuleSupported {
-                            module_type: type_byte(f, "module_type", ModuleType::NAMES)?,
-                            supported: flag(f, "supported")?,
-                        }
-                    }
+                { "module_main_report" [ModuleSupported] } plain {
+                    /// The type asked about.
+                    module_type: type_check(ModuleType::NAMES) "module_type",
+                    /// Supported.
+                    supported: flag "supported",
                 };
             /// 34 MODULE_REPORT.
             34 MODULE in [Mirte13] len { header(5) |dialect, len, frame, at| module_report_len_ok(len, frame) }
