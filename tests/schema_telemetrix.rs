@@ -884,7 +884,8 @@ const BAD_LINES: &[(Dialect, &str, &str)] = &[
     (
         M13,
         r#"{"type":"i2c_read","port":0,"addr":104,"msg_id":3,"reg":117,"n":58,"no_stop":0}"#,
-        "field `n` must be an integer 1..=57, found 58",
+        "field `n` must be an integer 1..=57, found 58 (a frame a real peer sends, which decode \
+         marks \"quirk\":\"past_firmware_buffer\": add that to the line to encode it anyway)",
     ),
     (
         M13,
@@ -900,8 +901,9 @@ const BAD_LINES: &[(Dialect, &str, &str)] = &[
     ),
     (
         Dialect::Mirte12,
-        r#"{"type":"modify_reporting","action":"enable_analog","pin":31,"quirk":"analog_reporting_pin_not_adc"}"#,
-        "field `pin` must be an integer 26..=30, found 31",
+        r#"{"type":"modify_reporting","action":"enable_analog","pin":3,"quirk":"analog_reporting_pin_not_adc"}"#,
+        "the line says \"quirk\":\"analog_reporting_pin_not_adc\", but its frame for mirte12 has \
+         no quirk: leave `quirk` out",
     ),
     (
         M13,
@@ -914,7 +916,8 @@ const BAD_LINES: &[(Dialect, &str, &str)] = &[
         r#"{"type":"ping","counter":1,"quirk":"odd"}"#,
         "field `quirk` must be one of digital_reporting_pin_minus_26, level_not_binary, \
          pwm_trailing_bytes, encoder_type_not_1_or_2, echoed_request_byte, \
-         analog_reporting_pin_not_adc, found \"odd\"",
+         analog_reporting_pin_not_adc, ignored_by_firmware, past_firmware_buffer, \
+         spi_data_bits_out_of_range, found \"odd\"",
     ),
     (
         M13,

@@ -694,6 +694,7 @@ fn encoder_refuses_what_firmware_mishandles() {
     // Ids the dialect lacks: PING upstream, GET_ID in mirte 1.2.
     assert_eq!(enc(UP, Command::Ping { counter: 1 }), not_here);
     assert_eq!(enc(M12, Command::GetId), not_here);
+    // Ids the firmware has as empty stubs: MODULE_DATA in mirte 1.2.
     assert_eq!(
         enc(
             M12,
@@ -702,7 +703,9 @@ fn encoder_refuses_what_firmware_mishandles() {
                 data: &[1]
             }
         ),
-        not_here
+        Err(EncodeError::Inconsistent {
+            what: "the command does nothing in this dialect's firmware"
+        })
     );
     // Pins ≥ 30.
     assert_eq!(

@@ -82,9 +82,10 @@ fn analog_reporting_by_gpio_number_in_mirte12_and_upstream11() {
     }
 }
 
-/// The same rule for every GPIO number of an ADC input (26..=30) and both
-/// analog types; the ADC numbers 0..=4 carry no quirk, and the pins that are
-/// no analog input in any numbering stay rejected.
+/// The same rule for every pin byte past the ADC numbers (a GPIO number
+/// 26..=30 or any other: the clients check none) and both analog types; the
+/// ADC numbers 0..=4 carry no quirk. `03 04 01 05` was rejected, and a
+/// false `get_firmware_version` found at its offset 2.
 #[test]
 fn analog_reporting_pin_ranges_in_mirte12_and_upstream11() {
     for dialect in [Dialect::Mirte12, Dialect::Upstream11] {
@@ -101,8 +102,7 @@ fn analog_reporting_pin_ranges_in_mirte12_and_upstream11() {
                 };
                 let expected = match pin {
                     0..=4 => Some(None),
-                    26..=30 => Some(Some(Quirk::AnalogReportingPinNotAdc)),
-                    _ => None,
+                    _ => Some(Some(Quirk::AnalogReportingPinNotAdc)),
                 };
                 assert_eq!(decoded, expected, "{dialect} {frame:02x?}: {got:?}");
             }
@@ -146,7 +146,7 @@ fn even_if_refused_encodes_quirky_frames_exactly() {
     // What is no frame at all stays refused.
     let pin_31 = Command::ModifyReporting(ModifyReporting::EnableAnalog { pin: 31 });
     assert!(
-        FrameBuf::<31>::encode(&pin_31.in_dialect(Dialect::Mirte12).even_if_refused()).is_err()
+        FrameBuf::<31>::encode(&pin_31.in_dialect(Dialect::Mirte13).even_if_refused()).is_err()
     );
 
     let disabled = Report::Module {

@@ -318,7 +318,7 @@ impl<'a> Command<'a> {
         // ... nor anything it flags: those frames are a real host's, never
         // what robowire sends.
         match command_quirk(dialect, frame) {
-            Some(quirk) if !even_if_refused => return Err(quirk.into_encode_error()),
+            Some(quirk) if !even_if_refused => return Err(quirk.into_encode_error(frame)),
             _ => {}
         }
         if let Some(dst) = out.get_mut(..n) {

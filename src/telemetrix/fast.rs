@@ -93,8 +93,8 @@ const fn table(dialect: Dialect) -> [Entry; 64] {
     // pin, humidity, hundredths, temp, hundredths: temperatures of 0 °C and
     // above here (a negative one needs the sign check of the full path).
     t[id::DHT as usize] = entry(6, id::DHT, &[PIN, ANY, HUNDREDTHS, (0, 127), HUNDREDTHS]);
+    t[id::I2C_READ_FAILED as usize] = entry(4, id::I2C_READ_FAILED, &[FLAG, (0, 0x7f), ANY]);
     if mirte {
-        t[id::I2C_READ_FAILED as usize] = entry(4, id::I2C_READ_FAILED, &[FLAG, (0, 0x7f), ANY]);
         // Steps are never 0.
         t[id::ENCODER as usize] = entry(3, id::ENCODER, &[PIN, (1, 255)]);
         t[id::PONG as usize] = entry(3, id::PONG, &[ANY, HUNDREDTHS]);

@@ -122,9 +122,13 @@ named!(
         "encoder_type_not_1_or_2",
         "echoed_request_byte",
         "analog_reporting_pin_not_adc",
+        "ignored_by_firmware",
+        "past_firmware_buffer",
+        "spi_data_bits_out_of_range",
     ],
     "digital_reporting_pin_minus_26, level_not_binary, pwm_trailing_bytes, \
-     encoder_type_not_1_or_2, echoed_request_byte, analog_reporting_pin_not_adc",
+     encoder_type_not_1_or_2, echoed_request_byte, analog_reporting_pin_not_adc, \
+     ignored_by_firmware, past_firmware_buffer, spi_data_bits_out_of_range",
     Quirk::ALL
 );
 

@@ -6,7 +6,7 @@ use super::command::Command;
 use super::dialect::Dialect;
 use super::kind::piece;
 use super::report::Report;
-use super::wire::{MAX_COMMAND_FRAME, MAX_REPORT_FRAME};
+use super::wire::{command_id, pixel_buffer, I2C_READ_MAX, MAX_COMMAND_FRAME, MAX_REPORT_FRAME, SPI_READ_MAX};
 use super::InDialect;
 use crate::{Encode, EncodeError};
 
@@ -28,20 +28,44 @@ use crate::{Encode, EncodeError};
 /// | [`PwmTrailingBytes`](Quirk::PwmTrailingBytes) | `05 03 01 00 10 07` | mirte 1.3 | a host with a short last triple | takes `(LEN − 1) / 3` pins |
 /// | [`EncoderTypeNot1Or2`](Quirk::EncoderTypeNot1Or2) | `05 1e 03 02 03 00` | mirte 1.3, 1.2 | a host | sets up a quadrature encoder |
 /// | [`EchoedRequestByte`](Quirk::EchoedRequestByte) | `05 22 03 03 05 fe` (report) | mirte 1.3 | the Pico | echoes the subtype it did not know |
-/// | [`AnalogReportingPinNotAdc`](Quirk::AnalogReportingPinNotAdc) | `03 04 01 1a` | mirte 1.2, upstream 1.1 | their Python clients (`enable_analog_reporting(26)`, unchecked) | indexes its 5 analog pins with the byte |
+/// | [`AnalogReportingPinNotAdc`](Quirk::AnalogReportingPinNotAdc) | `03 04 01 1a`, `03 04 01 05` | mirte 1.2, upstream 1.1 | their Python clients (`enable_analog_reporting(26)`, unchecked) | writes past its 5-entry analog pin array; no ADC pin's reporting changes |
+/// | [`IgnoredByFirmware`](Quirk::IgnoredByFirmware) | `03 21 00 01`, `07 22 01 03 00 00 01 2c` | mirte 1.2 | the mirte 1.2-era client with modules | does nothing (empty MODULE_NEW and MODULE_DATA handlers), sends no reply |
+/// | [`PastFirmwareBuffer`](Quirk::PastFirmwareBuffer) | `07 0b 00 68 00 75 40 00`, `04 1a 00 40 00`, `06 13 1c 96 00 00 00` (mirte 1.3) | all | a host asking for more than the firmware holds (the 1.1 and 1.2 clients check none of these) | writes past a fixed buffer: its 64-entry I2C or SPI report buffer, or its pixel buffer (100 pixels in mirte 1.3, 150 in 1.2 and 1.1) |
+/// | [`SpiDataBitsOutOfRange`](Quirk::SpiDataBitsOutOfRange) | `05 1b 00 14 00 00` | all | a host (the 1.1 and 1.2 clients do not check) | sets the SPI frame size from the low 4 bits of `data_bits − 1` (20 bits: 4-bit frames) |
 ///
-/// The last rule is not in the spec, which gives those dialects' analog
-/// pins as ADC numbers 0..=4 (§10). Their firmware's MODIFY_REPORTING
-/// handler takes the type and the pin byte and, for types 1 and 3, sets the
-/// reporting flag of `analog_pins[pin]` without a range check; for types 2
-/// and 4 it indexes the digital pins directly (no `− 26`); type 0 ignores
-/// the pin. Their clients send the pin byte they are given, unchecked, so
-/// the decoder takes an analog pin by its ADC number (no quirk) or by its
-/// GPIO number 26..=30 (the numbering of the Pico's pinout and of mirte
-/// 1.3; flagged), digital pins below 30, and type 0 with pin 0 (what every
-/// client sends); other pin bytes stay rejected, as everywhere in the
-/// decoder. SET_PIN_MODE analog needs no such rule: those clients check its
-/// ADC number (0..=4) before sending.
+/// These rules come from the firmware sources (upstream 1.1
+/// `MrYsLab/Telemetrix4RpiPico`, mirte 1.2 `mirte-robot/Telemetrix4RpiPico`
+/// tag 0.1.1, mirte 1.3 `ArendJan/Telemetrix4RpiPico`) where the spec gives
+/// only the range a careful host keeps to.
+///
+/// * MODIFY_REPORTING in mirte 1.2 and upstream 1.1: the spec gives their
+///   analog pins as ADC numbers 0..=4 (§10). The handler takes the type and
+///   the pin byte and, for types 1 and 3, sets the reporting flag of
+///   `the_analog_pins[pin]` without a range check, so any byte past 4
+///   writes past the 5-entry array: the reporting of ADC 0..=4 does not
+///   change, and no analog report of the pin the host meant follows. For
+///   types 2 and 4 it indexes the digital pins directly (no `− 26`); type 0
+///   ignores the pin. Their clients send the pin byte they are given,
+///   unchecked, so the decoder takes an analog pin by its ADC number (no
+///   quirk) or any other byte (flagged: a GPIO number 26..=30 is what a
+///   host that counts pins as mirte 1.3 does sends), digital pins below 30,
+///   and type 0 with pin 0 (what every client sends). SET_PIN_MODE analog
+///   needs no such rule: those clients check its ADC number (0..=4).
+/// * MODULE_NEW and MODULE_DATA (ids 33, 34) in mirte 1.2: its command
+///   table has both, with handlers that return at once. The decoder reads
+///   them in mirte 1.3's layout (what the client that sends them writes).
+/// * The report buffers of every firmware hold 64 entries: an I2C read of
+///   `n` bytes fills `n + 7` of them (mirte; `n + 6` upstream) and an SPI
+///   read `n + 4`, unchecked, so a read of more than 57 (I2C) or 60 (SPI)
+///   bytes writes past the buffer. The pixel buffer holds 150 pixels in
+///   mirte 1.2 and upstream 1.1, whose INITIALIZE_NEO_PIXELS fills `count`
+///   pixels and SET_NEO_PIXEL writes pixel `index`, unchecked; mirte 1.3's
+///   holds 100, fills `count` of them, and ignores an `index` at or past the
+///   count.
+/// * SPI_SET_FORMAT passes `data_bits` to the Pico SDK's `spi_set_format`,
+///   which checks its 4..=16 range only in builds with parameter assertions
+///   (off in the firmware's release builds) and writes `data_bits − 1` into
+///   the 4-bit frame-size field.
 ///
 /// ```
 /// use robowire::telemetrix::{CommandBuf, Dialect, Quirk};
@@ -73,26 +97,47 @@ pub enum Quirk {
     /// to a MODULE_DATA whose subtype is not 0..=3.
     EchoedRequestByte,
     /// MODIFY_REPORTING type 1 or 3 (enable or disable an analog pin) in
-    /// mirte 1.2 or upstream 1.1 naming the pin by its GPIO number
-    /// (26..=30) where that firmware takes an ADC number (0..=4): it indexes
-    /// its five analog pins with the byte, out of range.
+    /// mirte 1.2 or upstream 1.1 with a pin byte past 4 (a GPIO number
+    /// 26..=30, or any other byte) where that firmware takes an ADC number
+    /// (0..=4): it writes the flag past its five analog pins, and no ADC
+    /// pin's reporting changes.
     AnalogReportingPinNotAdc,
+    /// MODULE_NEW or MODULE_DATA in mirte 1.2, whose firmware has both in
+    /// its command table as empty stubs: the Pico does nothing and sends no
+    /// reply.
+    IgnoredByFirmware,
+    /// A read length, pixel count or pixel index past a fixed buffer of the
+    /// firmware, which does not check it: I2C_READ of more than 57 bytes or
+    /// SPI_READ_BLOCKING of more than 60 (its 64-entry report buffer),
+    /// INITIALIZE_NEO_PIXELS or SET_NEO_PIXEL past its pixel buffer (100
+    /// pixels in mirte 1.3, 150 in mirte 1.2 and upstream 1.1). The
+    /// firmware writes past the buffer (mirte 1.3 ignores such a pixel
+    /// index instead).
+    PastFirmwareBuffer,
+    /// SPI_SET_FORMAT with `data_bits` outside 4..=16: the firmware hands
+    /// it to the Pico SDK unchecked, which sets the frame size from the low
+    /// 4 bits of `data_bits − 1` (20 gives 4-bit frames).
+    SpiDataBitsOutOfRange,
 }
 
 impl Quirk {
     /// Every quirk, in the order of [`Quirk::NAMES`].
-    pub const ALL: [Quirk; 6] = [
+    pub const ALL: [Quirk; 9] = [
         Quirk::DigitalReportingPinMinus26,
         Quirk::LevelNotBinary,
         Quirk::PwmTrailingBytes,
         Quirk::EncoderTypeNot1Or2,
         Quirk::EchoedRequestByte,
         Quirk::AnalogReportingPinNotAdc,
+        Quirk::IgnoredByFirmware,
+        Quirk::PastFirmwareBuffer,
+        Quirk::SpiDataBitsOutOfRange,
     ];
 
     /// The encode error of a message whose frame would have this quirk:
     /// the one the encoder gave before the decoder accepted such frames.
-    pub(crate) const fn into_encode_error(self) -> EncodeError {
+    /// `frame` is the frame's bytes (`LEN` first).
+    pub(crate) const fn into_encode_error(self, frame: &[u8]) -> EncodeError {
         match self {
             Quirk::DigitalReportingPinMinus26 => EncodeError::OutOfRange { field: "pin" },
             Quirk::LevelNotBinary => EncodeError::OutOfRange { field: "value" },
@@ -104,8 +149,34 @@ impl Quirk {
                 field: "request_sub",
             },
             Quirk::AnalogReportingPinNotAdc => EncodeError::OutOfRange { field: "pin" },
+            Quirk::IgnoredByFirmware => EncodeError::Inconsistent {
+                what: "the command does nothing in this dialect's firmware",
+            },
+            Quirk::PastFirmwareBuffer => EncodeError::OutOfRange {
+                // The field past the buffer, by the frame's id.
+                field: match frame {
+                    [_, command_id::INITIALIZE_NEO_PIXELS, ..] => "count",
+                    [_, command_id::SET_NEO_PIXEL, ..] => "index",
+                    _ => "len",
+                },
+            },
+            Quirk::SpiDataBitsOutOfRange => EncodeError::OutOfRange { field: "data_bits" },
         }
     }
+}
+
+/// [`Quirk::PastFirmwareBuffer`] if the frame's byte `at` is above `max`.
+fn past_buffer_at(frame: &[u8], at: usize, max: u8) -> Option<Quirk> {
+    frame
+        .get(at)
+        .filter(|&&byte| byte > max)
+        .map(|_| Quirk::PastFirmwareBuffer)
+}
+
+/// [`Quirk::IgnoredByFirmware`] in mirte 1.2, whose MODULE_NEW and
+/// MODULE_DATA handlers are empty.
+fn ignored_in_mirte12(dialect: Dialect) -> Option<Quirk> {
+    (dialect == Dialect::Mirte12).then_some(Quirk::IgnoredByFirmware)
 }
 
 /// `command_quirk`, from the command table.

@@ -8,15 +8,12 @@ use super::module::{module_report_len_ok, ModuleReport};
 use super::quirk::report_quirk;
 use super::sensor::{SensorReading, SensorType};
 use super::wire::{
-    analog_pin_ok, counted, report_known, split_frame, Reader, Writer, MAX_REPORT_FRAME,
+    analog_pin_ok, counted, report_known, split_frame, Reader, Writer, I2C_READ_MAX,
+    MAX_REPORT_FRAME, SPI_READ_MAX,
 };
 use crate::encode::check_room;
 use crate::{Encode, EncodeError};
 
-/// Largest I2C read (spec §4, command 11).
-const I2C_READ_MAX: u8 = 57;
-/// Largest SPI read (spec §4, command 26).
-const SPI_READ_MAX: u8 = 60;
 /// Sonar distances at or above this (other than the sentinels) are impossible:
 /// the firmware gives up after 30 ms of echo, about 517 cm.
 const SONAR_CM_LIMIT: u16 = 1000;
@@ -338,7 +335,7 @@ impl Report<'_> {
         parse_report_with(dialect, lenient, frame).map_err(Error::into_encode_error)?;
         // ... nor anything it flags.
         match report_quirk(dialect, frame) {
-            Some(quirk) if !even_if_refused => return Err(quirk.into_encode_error()),
+            Some(quirk) if !even_if_refused => return Err(quirk.into_encode_error(frame)),
             _ => {}
         }
         if let Some(dst) = out.get_mut(..n) {

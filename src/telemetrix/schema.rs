@@ -30,7 +30,9 @@ use super::quirk::Quirk;
 use super::report::{Report, Sonar, SONAR_NO_ECHO, SONAR_OUT_OF_RANGE, SONAR_STALE};
 use super::sensor::{SensorNew, SensorReading, SensorType};
 use super::table::sensor_readings;
-use super::wire::{COMMAND_PAYLOAD_MAX, MAX_REPORT_FRAME, PIN_COUNT};
+use super::wire::{
+    pixel_buffer, COMMAND_PAYLOAD_MAX, I2C_READ_MAX, MAX_REPORT_FRAME, PIN_COUNT, SPI_READ_MAX,
+};
 use crate::serde_support::{read_f32, read_int, serialize_f32, unknown_type, Fields, Value};
 use crate::Encode;
 
@@ -464,6 +466,13 @@ fn ranged(f: &mut Fields<'_>, key: &str, min: u8, max: u8) -> Result<u8, String>
 }
 
 /// A GPIO number, `0..=29`.
+/// A length or index the firmware holds up to `max`: any byte from `min`
+/// on a line marked [`Quirk::PastFirmwareBuffer`].
+fn past_buffer(f: &mut Fields<'_>, key: &str, min: u8, max: u8, raw: &Raw) -> Result<u8, String> {
+    let max = if raw.is(Quirk::PastFirmwareBuffer) { u8::MAX } else { max };
+    ranged(f, key, min, max)
+}
+
 fn pin_(f: &mut Fields<'_>, key: &str) -> Result<u8, String> {
     ranged(f, key, 0, PIN_COUNT - 1)
 }
@@ -481,7 +490,7 @@ fn analog_pin(f: &mut Fields<'_>, dialect: Dialect) -> Result<u8, String> {
 /// 26..=30 those dialects' clients send.
 fn reporting_analog_pin(f: &mut Fields<'_>, dialect: Dialect, raw: &Raw) -> Result<u8, String> {
     if raw.is(Quirk::AnalogReportingPinNotAdc) {
-        ranged(f, "pin", 26, 30)
+        u8_(f, "pin")
     } else {
         analog_pin(f, dialect)
     }

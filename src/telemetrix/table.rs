@@ -348,11 +348,11 @@ macro_rules! command_table {
                         // the firmware indexes them as pin - 26: accepted, and flagged as
                         // a quirk.
                         let digital_ok = pin < PIN_COUNT;
-                        // Mirte 1.2's and upstream 1.1's clients send an analog pin's
-                        // GPIO number (26..=30) unchecked where their firmware takes an
-                        // ADC number: accepted as sent, and flagged as a quirk.
-                        let analog_ok =
-                            analog_pin_ok(Dialect::Mirte13, pin) || analog_pin_ok(dialect, pin);
+                        // Mirte 1.2's and upstream 1.1's clients send the analog pin byte
+                        // they are given unchecked (a GPIO number 26..=30, or any other)
+                        // where their firmware takes an ADC number: accepted as sent, and
+                        // flagged as a quirk past 4.
+                        let analog_ok = dialect != Dialect::Mirte13 || analog_pin_ok(dialect, pin);
                         Command::ModifyReporting(match kind {
                             0 if pin == 0 => ModifyReporting::DisableAll,
                             1 if analog_ok => ModifyReporting::EnableAnalog { pin },
@@ -486,17 +486,19 @@ macro_rules! command_table {
                     }
                     parse(dialect, r, cmd) {
                         let (port, addr) = (r.port()?, r.i2c_addr()?);
+                        // More than 57 bytes overrun the firmware's report buffer: a real
+                        // host's frame all the same, flagged as a quirk.
                         if dialect.is_mirte() {
                             let (msg_id, reg) = (r.u8()?, r.u8()?);
                             let len = r.u8()?;
-                            ensure((1..=57).contains(&len), cmd, "len")?;
+                            ensure(len >= 1, cmd, "len")?;
                             let no_stop = r.u8()?;
                             ensure(matches!(no_stop, 0 | 1 | 254), cmd, "no_stop")?;
                             Command::I2cRead { port, addr, msg_id, reg, len, no_stop }
                         } else {
                             let reg = r.u8()?;
                             let len = r.u8()?;
-                            ensure((1..=57).contains(&len), cmd, "len")?;
+                            ensure(len >= 1, cmd, "len")?;
                             let no_stop = r.u8()?;
                             ensure(no_stop <= 1, cmd, "no_stop")?;
                             Command::I2cReadUpstream { port, addr, reg, len, no_stop }
@@ -534,7 +536,7 @@ macro_rules! command_table {
                                 port,
                                 addr,
                                 reg: u8_(f, "reg")?,
-                                len: ranged(f, "n", 1, 57)?,
+                                len: past_buffer(f, "n", 1, I2C_READ_MAX, raw)?,
                                 no_stop: u8_(f, "no_stop")?,
                             }
                         } else {
@@ -543,7 +545,7 @@ macro_rules! command_table {
                                 addr,
                                 msg_id: u8_(f, "msg_id")?,
                                 reg: u8_(f, "reg")?,
-                                len: ranged(f, "n", 1, 57)?,
+                                len: past_buffer(f, "n", 1, I2C_READ_MAX, raw)?,
                                 no_stop: u8_(f, "no_stop")?,
                             }
                         }
@@ -556,6 +558,11 @@ macro_rules! command_table {
                             Command::I2cRead { .. } => &[Dialect::Mirte13, Dialect::Mirte12],
                             _ => &[Dialect::Upstream11],
                         }
+                    }
+                    quirk(dialect, frame) {
+                        // The length byte: the payload's fifth (mirte) or fourth.
+                        let at = if dialect.is_mirte() { 6 } else { 5 };
+                        past_buffer_at(frame, at, I2C_READ_MAX)
                     }
                 };
             12 I2C_WRITE "i2c_write" [I2cWrite, I2cWriteUpstream] in [Mirte13, Mirte12, Upstream11] len { Dialect::Upstream11 => (6, 30), _ => (7, 30) }
@@ -684,28 +691,97 @@ macro_rules! command_table {
             /// 18 RESET_BOARD.
             18 RESET_BOARD "reset_board" [ResetBoard] in [Mirte13, Mirte12, Upstream11] len (1, 1)
                 plain ResetBoard {};
-            /// 19 INITIALIZE_NEO_PIXELS: fills and shows.
+            // A count past the firmware's pixel buffer is a real host's frame,
+            // flagged as a quirk.
             19 INITIALIZE_NEO_PIXELS "initialize_neo_pixels" [InitNeoPixels] in [Mirte13, Mirte12, Upstream11] len (6, 6)
-                plain InitNeoPixels {
-                    /// GPIO number (< 30).
-                    pin: pin "pin",
-                    /// Number of pixels, ≤ 100.
-                    count: range(0, 100) "count",
-                    /// Fill colour.
-                    rgb: rgb "rgb",
+                custom {
+                    variants {
+                        /// 19 INITIALIZE_NEO_PIXELS: fills and shows.
+                        InitNeoPixels {
+                            /// GPIO number (< 30).
+                            pin: u8,
+                            /// Number of pixels: at most 100 in mirte 1.3, 150 in mirte
+                            /// 1.2 and upstream 1.1 (the firmware's pixel buffer).
+                            count: u8,
+                            /// Fill colour.
+                            rgb: Rgb,
+                        },
+                    }
+                    parse(dialect, r, cmd) {
+                        Command::InitNeoPixels { pin: r.pin("pin")?, count: r.u8()?, rgb: rgb(r)? }
+                    }
+                    write(w) {
+                        Command::InitNeoPixels { pin, count, rgb } => {
+                            w.bytes(&[pin, count, rgb.r, rgb.g, rgb.b])
+                        }
+                    }
+                    fields(view, w) {
+                        Command::InitNeoPixels { pin, count, rgb: colour } => {
+                            w.u("pin", pin);
+                            w.u("count", count);
+                            rgb(w, colour);
+                        }
+                    }
+                    read(f, dialect, buf, raw) {
+                        Command::InitNeoPixels {
+                            pin: pin_(f, "pin")?,
+                            count: past_buffer(f, "count", 0, pixel_buffer(dialect), raw)?,
+                            rgb: rgb(f)?,
+                        }
+                    }
+                    quirk(dialect, frame) {
+                        past_buffer_at(frame, 3, pixel_buffer(dialect))
+                    }
                 };
             /// 20 SHOW_NEO_PIXELS.
             20 SHOW_NEO_PIXELS "show_neo_pixels" [ShowNeoPixels] in [Mirte13, Mirte12, Upstream11] len (1, 1)
                 plain ShowNeoPixels {};
-            /// 21 SET_NEO_PIXEL.
+            // An index past the firmware's pixel buffer is a real host's frame,
+            // flagged as a quirk.
             21 SET_NEO_PIXEL "set_neo_pixel" [SetNeoPixel] in [Mirte13, Mirte12, Upstream11] len (6, 6)
-                plain SetNeoPixel {
-                    /// Pixel index (< 100).
-                    index: range(0, 99) "index",
-                    /// Colour.
-                    rgb: rgb "rgb",
-                    /// Show at once.
-                    auto_show: flag "auto_show",
+                custom {
+                    variants {
+                        /// 21 SET_NEO_PIXEL.
+                        SetNeoPixel {
+                            /// Pixel index: below 100 in mirte 1.3, 150 in mirte 1.2 and
+                            /// upstream 1.1 (the firmware's pixel buffer).
+                            index: u8,
+                            /// Colour.
+                            rgb: Rgb,
+                            /// Show at once.
+                            auto_show: bool,
+                        },
+                    }
+                    parse(dialect, r, cmd) {
+                        Command::SetNeoPixel {
+                            index: r.u8()?,
+                            rgb: rgb(r)?,
+                            auto_show: r.flag("auto_show")?,
+                        }
+                    }
+                    write(w) {
+                        Command::SetNeoPixel { index, rgb, auto_show } => {
+                            w.bytes(&[index, rgb.r, rgb.g, rgb.b]);
+                            w.flag(auto_show);
+                        }
+                    }
+                    fields(view, w) {
+                        Command::SetNeoPixel { index, rgb: colour, auto_show } => {
+                            w.u("index", index);
+                            rgb(w, colour);
+                            w.flag("auto_show", auto_show);
+                        }
+                    }
+                    read(f, dialect, buf, raw) {
+                        Command::SetNeoPixel {
+                            index: past_buffer(f, "index", 0, pixel_buffer(dialect) - 1, raw)?,
+                            rgb: rgb(f)?,
+                            auto_show: flag(f, "auto_show")?,
+                        }
+                    }
+                    quirk(dialect, frame) {
+                        past_buffer_at(frame, 2, pixel_buffer(dialect) - 1)
+                    }
                 };
             /// 22 CLEAR_ALL_NEO_PIXELS (always shows).
             22 CLEAR_ALL_NEO_PIXELS "clear_all_neo_pixels" [ClearAllNeoPixels] in [Mirte13, Mirte12, Upstream11] len (1, 2)
@@ -745,27 +821,105 @@ macro_rules! command_table {
                     /// At most 27 bytes.
                     data: counted("len", 27) "data",
                 };
-            /// 26 SPI_READ_BLOCKING: answered by report 13.
+            // More than 60 bytes overrun the firmware's report buffer: a real
+            // host's frame all the same, flagged as a quirk.
             26 SPI_READ_BLOCKING "spi_read_blocking" [SpiRead] in [Mirte13, Mirte12, Upstream11] len (4, 4)
-                plain SpiRead {
-                    /// 0 or 1.
-                    port: range(0, 1) "port",
-                    /// Bytes to read, ≤ 60.
-                    len: range(0, 60) "n",
-                    /// Byte clocked out while reading.
-                    tx_fill: u8 "tx_fill",
+                custom {
+                    variants {
+                        /// 26 SPI_READ_BLOCKING: answered by report 13.
+                        SpiRead {
+                            /// 0 or 1.
+                            port: u8,
+                            /// Bytes to read, ≤ 60.
+                            len: u8,
+                            /// Byte clocked out while reading.
+                            tx_fill: u8,
+                        },
+                    }
+                    parse(dialect, r, cmd) {
+                        Command::SpiRead { port: r.port()?, len: r.u8()?, tx_fill: r.u8()? }
+                    }
+                    write(w) {
+                        Command::SpiRead { port, len, tx_fill } => w.bytes(&[port, len, tx_fill]),
+                    }
+                    fields(view, w) {
+                        Command::SpiRead { port, len, tx_fill } => {
+                            w.u("port", port);
+                            w.u("n", len);
+                            w.u("tx_fill", tx_fill);
+                        }
+                    }
+                    read(f, dialect, buf, raw) {
+                        Command::SpiRead {
+                            port: ranged(f, "port", 0, 1)?,
+                            len: past_buffer(f, "n", 0, SPI_READ_MAX, raw)?,
+                            tx_fill: u8_(f, "tx_fill")?,
+                        }
+                    }
+                    quirk(dialect, frame) {
+                        past_buffer_at(frame, 3, SPI_READ_MAX)
+                    }
                 };
-            /// 27 SPI_SET_FORMAT.
+            // Data bits outside 4..=16 reach the Pico SDK unchecked: a real host's
+            // frame, flagged as a quirk.
             27 SPI_SET_FORMAT "spi_set_format" [SpiSetFormat] in [Mirte13, Mirte12, Upstream11] len (5, 5)
-                plain SpiSetFormat {
-                    /// 0 or 1.
-                    port: range(0, 1) "port",
-                    /// 4..=16.
-                    data_bits: range(4, 16) "data_bits",
-                    /// Clock polarity.
-                    cpol: level "cpol",
-                    /// Clock phase.
-                    cpha: level "cpha",
+                custom {
+                    variants {
+                        /// 27 SPI_SET_FORMAT.
+                        SpiSetFormat {
+                            /// 0 or 1.
+                            port: u8,
+                            /// 4..=16.
+                            data_bits: u8,
+                            /// Clock polarity.
+                            cpol: bool,
+                            /// Clock phase.
+                            cpha: bool,
+                        },
+                    }
+                    parse(dialect, r, cmd) {
+                        Command::SpiSetFormat {
+                            port: r.port()?,
+                            data_bits: r.u8()?,
+                            cpol: r.flag("cpol")?,
+                            cpha: r.flag("cpha")?,
+                        }
+                    }
+                    write(w) {
+                        Command::SpiSetFormat { port, data_bits, cpol, cpha } => {
+                            w.bytes(&[port, data_bits]);
+                            w.flag(cpol);
+                            w.flag(cpha);
+                        }
+                    }
+                    fields(view, w) {
+                        Command::SpiSetFormat { port, data_bits, cpol, cpha } => {
+                            w.u("port", port);
+                            w.u("data_bits", data_bits);
+                            w.level("cpol", cpol);
+                            w.level("cpha", cpha);
+                        }
+                    }
+                    read(f, dialect, buf, raw) {
+                        Command::SpiSetFormat {
+                            port: ranged(f, "port", 0, 1)?,
+                            data_bits: if raw.is(Quirk::SpiDataBitsOutOfRange) {
+                                u8_(f, "data_bits")?
+                            } else {
+                                ranged(f, "data_bits", 4, 16)?
+                            },
+                            cpol: level(f, "cpol")?,
+                            cpha: level(f, "cpha")?,
+                        }
+                    }
+                    quirk(dialect, frame) {
+                        match *frame {
+                            [5, _, _, bits, ..] if !(4..=16).contains(&bits) => {
+                                Some(Quirk::SpiDataBitsOutOfRange)
+                            }
+                            _ => None,
+                        }
+                    }
                 };
             /// 28 SPI_CS_CONTROL.
             28 SPI_CS_CONTROL "spi_cs_control" [SpiCsControl] in [Mirte13, Mirte12, Upstream11] len (3, 3)
@@ -952,7 +1106,9 @@ macro_rules! command_table {
                     /// Echoed in the reply.
                     counter: u8 "counter",
                 };
-            33 MODULE_NEW "module_new" [ModuleNew] in [Mirte13] len (3, 30)
+            // Mirte 1.2's command table has 33 and 34 as empty stubs: a real host
+            // sends them, decoded in mirte 1.3's layout and flagged.
+            33 MODULE_NEW "module_new" [ModuleNew] in [Mirte13, Mirte12] len (3, 30)
                 custom {
                     variants {
                         /// 33 MODULE_NEW (mirte 1.3).
@@ -976,8 +1132,11 @@ macro_rules! command_table {
                             _ => Ok(()),
                         }
                     }
+                    quirk(dialect, frame) {
+                        ignored_in_mirte12(dialect)
+                    }
                 };
-            34 MODULE_DATA "module_data" [ModuleData] in [Mirte13] len (2, 30)
+            34 MODULE_DATA "module_data" [ModuleData] in [Mirte13, Mirte12] len (2, 30)
                 custom {
                     variants {
                         /// 34 MODULE_DATA (mirte 1.3): build typed data with
@@ -1035,6 +1194,9 @@ macro_rules! command_table {
                             }
                             _ => Ok(()),
                         }
+                    }
+                    quirk(dialect, frame) {
+                        ignored_in_mirte12(dialect)
                     }
                 };
             /// 35 GET_ID (mirte 1.3): answered by report 35.
@@ -1249,8 +1411,8 @@ macro_rules! report_table {
                         }
                     }
                 };
-            /// 9 I2C_READ_FAILED (mirte): I2C read NAK.
-            9 I2C_READ_FAILED in [Mirte13, Mirte12] len { 4 }
+            /// 9 I2C_READ_FAILED: I2C read NAK.
+            9 I2C_READ_FAILED in [Mirte13, Mirte12, Upstream11] len { 4 }
                 { "i2c_read_failed" [I2cReadFailed] } plain {
                     /// Port.
                     port: range(0, 1) "port",

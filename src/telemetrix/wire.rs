@@ -24,6 +24,23 @@ pub const MAX_FRAME_LEN: usize = MAX_REPORT_FRAME;
 /// the longest variable field of a command.
 pub const COMMAND_PAYLOAD_MAX: usize = 28;
 
+/// The most bytes an I2C read fits in the firmware's 64-entry report buffer
+/// (`n + 7` entries in mirte's report; spec §2.1). More are flagged
+/// ([`Quirk::PastFirmwareBuffer`](super::Quirk::PastFirmwareBuffer)).
+pub(crate) const I2C_READ_MAX: u8 = 57;
+
+/// The most bytes an SPI read fits in the same buffer (`n + 4` entries).
+pub(crate) const SPI_READ_MAX: u8 = 60;
+
+/// The pixels the firmware's pixel buffer holds: 100 in mirte 1.3 (its
+/// NeoPixel driver), 150 (`MAXIMUM_NUM_NEOPIXELS`) before.
+pub(crate) const fn pixel_buffer(dialect: Dialect) -> u8 {
+    match dialect {
+        Dialect::Mirte13 => 100,
+        Dialect::Mirte12 | Dialect::Upstream11 => 150,
+    }
+}
+
 /// Whether `pin` names an analog input in `dialect`: GPIO 26..=30 (30 is the
 /// temperature sensor) in mirte 1.3, ADC 0..=4 before.
 pub(crate) const fn analog_pin_ok(dialect: Dialect, pin: u8) -> bool {
