@@ -141,7 +141,7 @@ async fn host(port: SerialStream) -> Result<()> {
     let stats = link.telemetry.decoder().stats();
     println!(
         "host: link: {} frames, {} checksum errors, {} other rejections, {} of {} bytes skipped",
-        stats.frames, stats.checksum_errors, stats.rejected, stats.skipped, stats.bytes
+        stats.frames, stats.checksum_failures, stats.other_rejections, stats.skipped, stats.bytes
     );
     if let Some(rejected) = link.telemetry.decoder().last_rejected() {
         println!("host: last rejected: {rejected}");

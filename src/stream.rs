@@ -213,7 +213,7 @@ pub trait FrameRules {
     fn superseded(&self, len: usize) -> Self::Error;
 
     /// Whether `error` is an integrity failure (counted in
-    /// [`Stats::checksum_errors`]).
+    /// [`Stats::checksum_failures`]).
     fn is_checksum_error(&self, error: &Self::Error) -> bool;
 
     /// Parse a frame that [`check`](FrameRules::check) accepted. An error here
@@ -342,15 +342,20 @@ pub struct Stats<C = u64> {
     /// Bytes that belonged to no frame: garbage between frames and the first
     /// byte of every rejected candidate.
     pub skipped: C,
-    /// Candidates rejected for a bad checksum.
-    pub checksum_errors: C,
+    /// Candidates rejected for a bad checksum (`checksum_errors` before
+    /// 0.3).
+    #[cfg_attr(feature = "serde", serde(alias = "checksum_errors"))]
+    pub checksum_failures: C,
     /// Candidates rejected for any other reason (unknown id, impossible length,
-    /// truncation at the end of input).
-    pub rejected: C,
+    /// truncation at the end of input), the `superseded` ones included
+    /// (serde reads 0.2's `rejected`, which left them out, into it).
+    #[cfg_attr(feature = "serde", serde(alias = "rejected"))]
+    pub other_rejections: C,
     /// Frames whose integrity was fine but whose contents did not parse.
     pub malformed: C,
     /// Candidates that validated after a resync but were set aside for an
-    /// overlapping frame that what follows confirmed.
+    /// overlapping frame that what follows confirmed (counted in
+    /// `other_rejections` too).
     pub superseded: C,
 }
 
@@ -369,8 +374,8 @@ impl<C: Counter> Stats<C> {
             frames: C::ZERO,
             frame_bytes: C::ZERO,
             skipped: C::ZERO,
-            checksum_errors: C::ZERO,
-            rejected: C::ZERO,
+            checksum_failures: C::ZERO,
+            other_rejections: C::ZERO,
             malformed: C::ZERO,
             superseded: C::ZERO,
         }
@@ -382,10 +387,27 @@ impl<C: Counter> Stats<C> {
         self.frames = self.frames.sum(other.frames);
         self.frame_bytes = self.frame_bytes.sum(other.frame_bytes);
         self.skipped = self.skipped.sum(other.skipped);
-        self.checksum_errors = self.checksum_errors.sum(other.checksum_errors);
-        self.rejected = self.rejected.sum(other.rejected);
+        self.checksum_failures = self.checksum_failures.sum(other.checksum_failures);
+        self.other_rejections = self.other_rejections.sum(other.other_rejections);
         self.malformed = self.malformed.sum(other.malformed);
         self.superseded = self.superseded.sum(other.superseded);
+    }
+
+    /// [`checksum_failures`](Stats::checksum_failures), under its 0.2 name.
+    #[deprecated(since = "0.3.0", note = "read the field `checksum_failures`")]
+    pub fn checksum_errors(&self) -> C {
+        self.checksum_failures
+    }
+
+    /// The 0.2 count of other rejections, without the superseded
+    /// candidates: [`other_rejections`](Stats::other_rejections) less
+    /// [`superseded`](Stats::superseded).
+    #[deprecated(
+        since = "0.3.0",
+        note = "read the field `other_rejections` (which counts superseded candidates too)"
+    )]
+    pub fn rejected(&self) -> C {
+        self.other_rejections.less(self.superseded)
     }
 }
 
@@ -425,6 +447,9 @@ pub trait Counter:
     /// `self + other`, wrapping.
     #[doc(hidden)]
     fn sum(self, other: Self) -> Self;
+    /// `self - other`, wrapping.
+    #[doc(hidden)]
+    fn less(self, other: Self) -> Self;
     /// The value as a `u64` (an offset in an event).
     fn to_u64(self) -> u64;
 }
@@ -442,6 +467,10 @@ macro_rules! counter {
                 self.wrapping_add(other)
             }
             #[inline(always)]
+            fn less(self, other: $t) -> $t {
+                self.wrapping_sub(other)
+            }
+            #[inline(always)]
             fn to_u64(self) -> u64 {
                 self as u64
             }
@@ -453,8 +482,8 @@ counter!(u16, u32, u64);
 
 /// One line, as the `robowire` tool's summary prints it:
 /// `2 frames, 20 bytes, 11 bytes skipped, 1 checksum failure, 2 other
-/// rejections, 0 malformed` (candidates set aside by the resync verification
-/// count as rejections; a count of 1 takes the singular).
+/// rejections, 0 malformed`, the words of the fields (a count of 1 takes the
+/// singular).
 ///
 /// ```
 /// let mut stats = robowire::Stats::new();
@@ -467,7 +496,6 @@ counter!(u16, u32, u64);
 impl<C: Counter> fmt::Display for Stats<C> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let s = |n: u64| if n == 1 { "" } else { "s" };
-        let rejected = self.rejected.sum(self.superseded);
         write!(
             f,
             "{} frame{}, {} byte{}, {} byte{} skipped, {} checksum failure{}, \
@@ -478,10 +506,10 @@ impl<C: Counter> fmt::Display for Stats<C> {
             s(self.bytes.to_u64()),
             self.skipped,
             s(self.skipped.to_u64()),
-            self.checksum_errors,
-            s(self.checksum_errors.to_u64()),
-            rejected,
-            s(rejected.to_u64()),
+            self.checksum_failures,
+            s(self.checksum_failures.to_u64()),
+            self.other_rejections,
+            s(self.other_rejections.to_u64()),
             self.malformed
         )
     }
@@ -1246,9 +1274,9 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
     /// Count a rejection by its kind and hand the error back.
     fn reject_kind(&mut self, error: F::Error) -> F::Error {
         if self.framing.is_checksum_error(&error) {
-            self.stats.checksum_errors = self.stats.checksum_errors.plus(1);
+            self.stats.checksum_failures = self.stats.checksum_failures.plus(1);
         } else {
-            self.stats.rejected = self.stats.rejected.plus(1);
+            self.stats.other_rejections = self.stats.other_rejections.plus(1);
         }
         error
     }
@@ -1256,6 +1284,7 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
     /// Count a superseded candidate of `n` bytes and make its error.
     fn supersede_kind(&mut self, n: usize) -> F::Error {
         self.stats.superseded = self.stats.superseded.plus(1);
+        self.stats.other_rejections = self.stats.other_rejections.plus(1);
         self.framing.superseded(n)
     }
 }

@@ -586,7 +586,12 @@ fn from_pico_matches_the_library_decoder() {
     let stats = decoder.stats();
     assert_eq!(
         r.stderr,
-        summary(stats.frames, stats.bytes, stats.skipped, stats.rejected)
+        summary(
+            stats.frames,
+            stats.bytes,
+            stats.skipped,
+            stats.other_rejections
+        )
     );
     assert_eq!(r.stderr, summary(217, 1283, 20, 17));
 }

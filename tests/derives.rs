@@ -13,9 +13,12 @@ fn serde_round_trips_reports_and_counters() {
     let json = serde_json::to_string(&stats).unwrap();
     assert_eq!(
         json,
-        r#"{"bytes":7,"frames":1,"frame_bytes":3,"skipped":4,"checksum_errors":1,"rejected":0,"malformed":0,"superseded":0}"#
+        r#"{"bytes":7,"frames":1,"frame_bytes":3,"skipped":4,"checksum_failures":1,"other_rejections":0,"malformed":0,"superseded":0}"#
     );
     assert_eq!(serde_json::from_str::<Stats>(&json).unwrap(), stats);
+    // The 0.2 names still read.
+    let old = r#"{"bytes":7,"frames":1,"frame_bytes":3,"skipped":4,"checksum_errors":1,"rejected":0,"malformed":0,"superseded":0}"#;
+    assert_eq!(serde_json::from_str::<Stats>(old).unwrap(), stats);
 
     let framed = OwnedFrame {
         offset: 4,

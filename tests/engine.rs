@@ -166,7 +166,7 @@ fn frame_inside_a_rejected_candidate_is_found() {
             "chunk {chunk}"
         );
         assert_eq!(
-            (stats.frames, stats.checksum_errors, stats.skipped),
+            (stats.frames, stats.checksum_failures, stats.skipped),
             (1, 1, 3)
         );
     }
@@ -196,7 +196,7 @@ fn truncated_candidate_at_end_is_rescanned() {
             }),
         ]
     );
-    assert_eq!(stats.rejected, 2);
+    assert_eq!(stats.other_rejections, 2);
     assert_eq!(stats.bytes, stats.frame_bytes + stats.skipped);
 }
 
@@ -406,4 +406,22 @@ proptest! {
             prop_assert!(it.any(|g| g == w), "lost {:?} in {:?}", w, got);
         }
     }
+}
+
+/// One name per count: the fields carry the words of the tool's summary
+/// line (`other_rejections` counts the superseded candidates too), and the
+/// 0.2 names still read for one release, through deprecated methods and
+/// serde aliases.
+#[test]
+#[allow(deprecated)]
+fn stats_have_one_name_per_count() {
+    let mut stats = robowire::Stats::new();
+    stats.checksum_failures = 2;
+    stats.other_rejections = 5;
+    stats.superseded = 1;
+    assert!(stats
+        .to_string()
+        .contains("2 checksum failures, 5 other rejections"));
+    assert_eq!(stats.checksum_errors(), 2);
+    assert_eq!(stats.rejected(), 4);
 }

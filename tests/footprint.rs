@@ -134,8 +134,8 @@ mod small_buffer {
             stats.frames.to_u64(),
             stats.frame_bytes.to_u64(),
             stats.skipped.to_u64(),
-            stats.checksum_errors.to_u64(),
-            stats.rejected.to_u64(),
+            stats.checksum_failures.to_u64(),
+            stats.other_rejections.to_u64(),
             stats.malformed.to_u64(),
             stats.superseded.to_u64(),
         ]

@@ -264,7 +264,10 @@ mod blocking {
         assert_eq!(reader.last_rejected(), last);
         let s = reader.stats();
         let rejections = expected.iter().filter(|e| e.is_err()).count() as u64;
-        assert_eq!(s.checksum_errors + s.rejected + s.malformed, rejections);
+        assert_eq!(
+            s.checksum_failures + s.other_rejections + s.malformed,
+            rejections
+        );
     }
 
     #[test]

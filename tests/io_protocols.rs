@@ -48,7 +48,7 @@ mod tokio_codec {
         assert_eq!(bodies[0], ResponseBuf::Result(61));
         assert_eq!(bodies[1], ResponseBuf::Error(DeviceError::Busy));
         assert!(matches!(bodies[2], ResponseBuf::Blocks(_)));
-        assert_eq!(read.decoder().stats().checksum_errors, 1);
+        assert_eq!(read.decoder().stats().checksum_failures, 1);
     }
 
     #[tokio::test]
@@ -134,7 +134,7 @@ mod embedded {
         assert_eq!(bodies.len(), 3);
         assert_eq!(bodies[0], ResponseBuf::Result(61));
         assert_eq!(bodies[1], ResponseBuf::Error(DeviceError::Busy));
-        assert_eq!(reader.stats().checksum_errors, 1);
+        assert_eq!(reader.stats().checksum_failures, 1);
 
         // A simulated device answers in checksum form.
         let mut uart = [0u8; 32];

@@ -74,7 +74,7 @@ fn the_tile_drops_a_command_after_a5_a5_that_the_decoder_finds() {
             "chunk {chunk}"
         );
         let s = parser.stats();
-        assert_eq!((s.frames, s.skipped, s.rejected), (0, 6, 1));
+        assert_eq!((s.frames, s.skipped, s.other_rejections), (0, 6, 1));
     }
 }
 

@@ -556,7 +556,7 @@ fn one_flipped_payload_bit_is_a_checksum_error_then_resync() {
     assert_eq!(frames(&events), [summed(response_vectors()[15].1)]);
     let mut d = pixy2::host_decoder();
     d.feed(&wire).for_each(drop);
-    assert_eq!(d.stats().checksum_errors, 1);
+    assert_eq!(d.stats().checksum_failures, 1);
     assert_eq!(d.stats().frames, 1);
 }
 

@@ -104,7 +104,7 @@ fn host_learns_what_the_camera_shows() {
     assert!(learned.busy >= 5, "{}", learned.busy);
     assert_eq!(learned.prog_changing, 3);
     assert_eq!(learned.no_response, 2);
-    assert_eq!(learned.checksum_errors, 1);
+    assert_eq!(learned.checksum_failures, 1);
     assert_eq!(outcome.device.dropped, 1);
     assert!(said.iter().any(|l| l.contains("checksum mismatch")));
     assert!(said.iter().any(|l| l == "program: line_tracking"));
@@ -141,7 +141,7 @@ fn every_answer_in_the_capture_answers_the_request_before_it() {
     // failed its checksum (the host asked again); the two byte sequences
     // that are no valid request got ERROR answers of their own.
     let stats = decoder.stats();
-    assert_eq!(stats.checksum_errors, 2);
+    assert_eq!(stats.checksum_failures, 2);
     assert_eq!(requests, 42);
     assert_eq!(paired, 29);
     // Booting, no new frame yet, program switches, no line to reverse.

@@ -51,7 +51,11 @@ fn command_between_neighbours(dialect: Dialect, frame: &str) -> CommandBuf {
             })
             .collect();
         let n = frame.len();
-        assert_eq!(spans, [(0, 2), (2, n), (2 + n as u64, 2)], "{dialect} {frame:02x?}");
+        assert_eq!(
+            spans,
+            [(0, 2), (2, n), (2 + n as u64, 2)],
+            "{dialect} {frame:02x?}"
+        );
     }
     CommandBuf::parse_in(&frame, dialect).unwrap()
 }
@@ -133,8 +137,16 @@ fn analog_reporting_past_the_adc_numbers() {
             } else {
                 ModifyReporting::DisableAnalog { pin }
             };
-            assert_eq!(command.message(), Command::ModifyReporting(expected), "{dialect}");
-            assert_eq!(command.quirk(), Some(Quirk::AnalogReportingPinNotAdc), "{dialect}");
+            assert_eq!(
+                command.message(),
+                Command::ModifyReporting(expected),
+                "{dialect}"
+            );
+            assert_eq!(
+                command.quirk(),
+                Some(Quirk::AnalogReportingPinNotAdc),
+                "{dialect}"
+            );
         }
     }
 }

@@ -49,7 +49,7 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
          {} busy, {} program-changing and {} no-response retries",
         device.answered,
         device.dropped,
-        outcome.learned.checksum_errors,
+        outcome.learned.checksum_failures,
         outcome.learned.busy,
         outcome.learned.prog_changing,
         outcome.learned.no_response

@@ -599,7 +599,7 @@ pub struct Learned {
     /// Retries after nothing came back.
     pub no_response: u32,
     /// Checksum failures the host decoder saw.
-    pub checksum_errors: u64,
+    pub checksum_failures: u64,
 }
 
 /// The host's side of the conversation.
@@ -752,7 +752,7 @@ pub fn run(report: &mut dyn FnMut(&str)) -> Result<Outcome, String> {
         mut learned,
         ..
     } = host;
-    learned.checksum_errors = decoder.stats().checksum_errors;
+    learned.checksum_failures = decoder.stats().checksum_failures;
     let Link {
         transfers,
         to_device,

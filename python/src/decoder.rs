@@ -109,7 +109,7 @@ impl PyStreamDecoder {
     /// ``other_rejections`` (superseded candidates included), ``malformed``
     /// (frames whose contents did not parse) and ``superseded``. They add up:
     /// ``bytes == frame_bytes + skipped + buffered``. The old keys
-    /// ``checksum_errors`` and ``rejected`` still read, deprecated.
+    /// ``checksum_failures`` and ``rejected`` still read, deprecated.
     #[getter]
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         stats_dict(py, &self.engine.stats())

@@ -244,7 +244,7 @@ pub fn with_bytes<T>(data: &Bound<'_, PyAny>, f: impl FnOnce(&[u8]) -> T) -> PyR
 
 /// The counters as a `robowire._stats.Stats` dict, in the words of the
 /// tool's summary line (the library's `Display` for [`Stats`]):
-/// `checksum_failures` is `checksum_errors`, `other_rejections` is `rejected`
+/// `checksum_failures` is `checksum_failures`, `other_rejections` is `rejected`
 /// and `superseded` together.
 pub fn stats_dict<'py>(py: Python<'py>, stats: &Stats) -> PyResult<Bound<'py, PyAny>> {
     static STATS: PyOnceLock<Py<PyType>> = PyOnceLock::new();
@@ -253,8 +253,8 @@ pub fn stats_dict<'py>(py: Python<'py>, stats: &Stats) -> PyResult<Bound<'py, Py
         ("frames", stats.frames),
         ("frame_bytes", stats.frame_bytes),
         ("skipped", stats.skipped),
-        ("checksum_failures", stats.checksum_errors),
-        ("other_rejections", stats.rejected + stats.superseded),
+        ("checksum_failures", stats.checksum_failures),
+        ("other_rejections", stats.other_rejections),
         ("malformed", stats.malformed),
         ("superseded", stats.superseded),
     ];

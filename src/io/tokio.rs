@@ -194,7 +194,7 @@ impl<F: FrameRules, const N: usize, Y> FrameCodec<F, N, Y> {
     /// let mut bytes = bytes::BytesMut::from(&[0xa5, 0x50, 0x51, 0xa5, 0x50, 0x50][..]);
     /// assert!(codec.decode(&mut bytes)?.unwrap().is_err());
     /// assert!(codec.decode(&mut bytes)?.unwrap().is_ok());
-    /// assert_eq!(codec.stats().checksum_errors, 1);
+    /// assert_eq!(codec.stats().checksum_failures, 1);
     /// # Ok::<(), std::io::Error>(())
     /// ```
     pub fn events(self) -> FrameCodec<F, N, Events> {

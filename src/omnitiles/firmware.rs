@@ -113,7 +113,7 @@ impl FirmwareParser {
                 }
                 self.len = 0;
                 self.stats.skipped += 2;
-                self.stats.rejected += 1;
+                self.stats.other_rejections += 1;
                 Some(Err(Rejected {
                     offset: self.start,
                     error: Error::UnknownId { id: byte },
@@ -142,7 +142,7 @@ impl FirmwareParser {
         let found = frame[total - 1];
         if expected != found {
             self.stats.skipped += total as u64;
-            self.stats.checksum_errors += 1;
+            self.stats.checksum_failures += 1;
             return Err(Rejected {
                 offset,
                 error: Error::Checksum { expected, found },
@@ -183,7 +183,7 @@ impl FirmwareParser {
             return None;
         }
         self.stats.skipped += len as u64;
-        self.stats.rejected += 1;
+        self.stats.other_rejections += 1;
         Some(Rejected {
             offset: self.start,
             error: Error::Truncated { len },

@@ -6,7 +6,9 @@ use super::command::Command;
 use super::dialect::Dialect;
 use super::kind::piece;
 use super::report::Report;
-use super::wire::{command_id, pixel_buffer, I2C_READ_MAX, MAX_COMMAND_FRAME, MAX_REPORT_FRAME, SPI_READ_MAX};
+use super::wire::{
+    command_id, pixel_buffer, I2C_READ_MAX, MAX_COMMAND_FRAME, MAX_REPORT_FRAME, SPI_READ_MAX,
+};
 use super::InDialect;
 use crate::{Encode, EncodeError};
 

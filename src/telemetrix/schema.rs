@@ -469,7 +469,11 @@ fn ranged(f: &mut Fields<'_>, key: &str, min: u8, max: u8) -> Result<u8, String>
 /// A length or index the firmware holds up to `max`: any byte from `min`
 /// on a line marked [`Quirk::PastFirmwareBuffer`].
 fn past_buffer(f: &mut Fields<'_>, key: &str, min: u8, max: u8, raw: &Raw) -> Result<u8, String> {
-    let max = if raw.is(Quirk::PastFirmwareBuffer) { u8::MAX } else { max };
+    let max = if raw.is(Quirk::PastFirmwareBuffer) {
+        u8::MAX
+    } else {
+        max
+    };
     ranged(f, key, min, max)
 }
 

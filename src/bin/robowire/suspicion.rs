@@ -126,7 +126,7 @@ fn looks_like_hex(start: &[u8]) -> bool {
 }
 
 fn rejections(stats: &Stats) -> u64 {
-    stats.checksum_errors + stats.rejected + stats.superseded
+    stats.checksum_failures + stats.other_rejections
 }
 
 /// Over [`SKIPPED_PERCENT`] of the non-zero bytes skipped (zero padding does
