@@ -5,32 +5,14 @@
 //! bytes; and the plain encoder still refuses what the firmware mishandles.
 
 use robowire::telemetrix::{
-    Both, BothDecoder, Command, CommandBuf, Device, DeviceDecoder, Dialect, Error, Framing, Host,
-    HostDecoder, MessageBuf, ModifyReporting, Quirk, Report, ReportBuf, Rgb,
+    Both, BothDecoder, Command, CommandBuf, Device, DeviceDecoder, Dialect, Framing, Host,
+    HostDecoder, ModifyReporting, Quirk, Report, ReportBuf, Rgb,
 };
-use robowire::{Encode, Rejected, StreamDecoder};
+use robowire::Encode;
 
-fn hex(s: &str) -> Vec<u8> {
-    s.split_whitespace()
-        .map(|b| u8::from_str_radix(b, 16).unwrap())
-        .collect()
-}
-
-type Ev = Result<(u64, usize, MessageBuf), (u64, Error)>;
-
-fn events<F, const N: usize>(mut decoder: StreamDecoder<F, N>, bytes: &[u8]) -> Vec<Ev>
-where
-    F: robowire::FrameRules<Error = Error>,
-    F::Owned: Into<MessageBuf>,
-{
-    let map = |e: robowire::OwnedEvent<F>| match e {
-        Ok(f) => Ok((f.offset, f.len, f.message.into())),
-        Err(Rejected { offset, error }) => Err((offset, error)),
-    };
-    let mut out: Vec<_> = decoder.feed(bytes).map(map).collect();
-    out.extend(decoder.flush().map(map));
-    out
-}
+#[path = "support/telemetrix_events.rs"]
+mod telemetrix_events;
+use telemetrix_events::{events, hex};
 
 /// A command `frame` between two GET_FIRMWARE_VERSIONs, fed to the device
 /// and both-ways decoders of `dialect`: exactly three frames at their
@@ -265,6 +247,7 @@ fn past_buffers_and_spi_bits() {
 #[cfg(feature = "serde")]
 #[test]
 fn every_line_re_encodes() {
+    use robowire::telemetrix::MessageBuf;
     let cases = [
         (Dialect::Mirte12, "03 21 00 01"),
         (Dialect::Mirte12, "07 22 01 03 00 00 01 2c"),

@@ -3,35 +3,13 @@
 //! (`even_if_refused`).
 
 use robowire::telemetrix::{
-    Both, BothDecoder, Command, CommandBuf, Device, DeviceDecoder, Dialect, Error, Framing,
-    Message, MessageBuf, ModifyReporting, Quirk,
+    Both, BothDecoder, Command, CommandBuf, Device, DeviceDecoder, Dialect, Framing, Message,
+    MessageBuf, ModifyReporting, Quirk,
 };
-use robowire::{Rejected, StreamDecoder};
 
-fn hex(s: &str) -> Vec<u8> {
-    s.split_whitespace()
-        .map(|b| u8::from_str_radix(b, 16).unwrap())
-        .collect()
-}
-
-/// An event as the tests compare it.
-type Ev = Result<(u64, usize, MessageBuf), (u64, Error)>;
-
-/// Every event of `bytes` fed whole: offset, length and the owned message
-/// turned into a `MessageBuf`, or offset and error.
-fn events<F, const N: usize>(mut decoder: StreamDecoder<F, N>, bytes: &[u8]) -> Vec<Ev>
-where
-    F: robowire::FrameRules<Error = Error>,
-    F::Owned: Into<MessageBuf>,
-{
-    let map = |e: robowire::OwnedEvent<F>| match e {
-        Ok(f) => Ok((f.offset, f.len, f.message.into())),
-        Err(Rejected { offset, error }) => Err((offset, error)),
-    };
-    let mut out: Vec<_> = decoder.feed(bytes).map(map).collect();
-    out.extend(decoder.flush().map(map));
-    out
-}
+#[path = "support/telemetrix_events.rs"]
+mod telemetrix_events;
+use telemetrix_events::{events, hex};
 
 /// The quirk of a decoded command read in the decoder's dialect (a
 /// decoder's owned form is read in the first dialect that takes it, mirte
