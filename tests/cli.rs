@@ -635,6 +635,10 @@ fn malformed_json_lines() {
         ),
         (r#"{"type":"m1_extend"}"#, "missing field `speed`"),
         (
+            r#"{"type":"m1_extend","sped":200}"#,
+            "unknown field `sped` (did you mean `speed`?)",
+        ),
+        (
             r#"{"type":"m1_extend","speed":256}"#,
             "field `speed` must be an integer 0..=255, found 256",
         ),

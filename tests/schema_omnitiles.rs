@@ -292,7 +292,7 @@ fn bad_lines_have_the_cli_messages() {
         ),
         (
             r#"{"type":"m1_extend","sped":200}"#,
-            "missing field `speed`",
+            "unknown field `sped` (did you mean `speed`?)",
         ),
         (
             r#"{"type":"m1_extend","speed":200,"sped":200}"#,

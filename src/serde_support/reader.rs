@@ -10,6 +10,7 @@ use alloc::format;
 use alloc::string::String;
 use alloc::vec::Vec;
 
+use super::suggest::may_mean;
 use super::Value;
 
 /// Members that the stream adds to a decoded frame (`offset`, `len`) and
@@ -104,10 +105,21 @@ impl<'a> Fields<'a> {
         self.map.contains_key(key)
     }
 
-    /// Take the member `key`, which must be present.
+    /// Take the member `key`, which must be present. When it is missing
+    /// and a member not yet taken looks like a misspelling of it, the error
+    /// names that member and suggests `key`.
     pub(crate) fn value(&mut self, key: &str) -> Result<&'a Value, String> {
-        self.optional(key)
-            .ok_or_else(|| format!("missing field `{key}`"))
+        self.optional(key).ok_or_else(|| {
+            let misspelt = self.map.keys().find(|k| {
+                !self.taken.contains(&k.as_str())
+                    && !IGNORED.contains(&k.as_str())
+                    && may_mean(k, key)
+            });
+            match misspelt {
+                Some(k) => format!("unknown field `{k}` (did you mean `{key}`?)"),
+                None => format!("missing field `{key}`"),
+            }
+        })
     }
 
     /// Take the member `key` if it is present.
@@ -253,6 +265,22 @@ mod tests {
             Err("field `uwb[1]` must be an integer 0..=9, found -3".into())
         );
         assert_eq!(fields.value("tof"), Err("missing field `tof`".into()));
+    }
+
+    #[test]
+    fn a_misspelt_field_is_named_with_a_suggestion() {
+        let map = object(&[
+            ("type", Value::Str("m1_extend".into())),
+            ("sped", Value::U64(200)),
+        ]);
+        let mut fields = Fields::of(&map, "a message").unwrap();
+        fields.string("type").unwrap();
+        assert_eq!(
+            fields.value("speed"),
+            Err("unknown field `sped` (did you mean `speed`?)".into())
+        );
+        // Nothing like the missing name: the plain error.
+        assert_eq!(fields.value("motor"), Err("missing field `motor`".into()));
     }
 
     #[test]

@@ -31,6 +31,12 @@ pub(crate) fn unknown_type(typed: &str, names: &[&str]) -> String {
     message
 }
 
+/// Whether `typed` is close enough to `name` to suggest it (the rule of
+/// [`unknown_type`]'s suggestions): a misspelt field name.
+pub(crate) fn may_mean(typed: &str, name: &str) -> bool {
+    !closest(typed, &[name]).is_empty()
+}
+
 /// `names` as `` `a`, `b` or `c` `` (`last` is `" or "` there).
 fn push_list(out: &mut String, names: &[&str], last: &str) {
     for (i, name) in names.iter().enumerate() {
