@@ -1,14 +1,14 @@
 //! What the `robowire` binary says on stderr about its input: encode's bad
 //! lines (too long, not UTF-8, a byte-order mark, invalid JSON), inputs that
 //! cannot be read, where hex text goes wrong, and the warnings about a
-//! misleading decode with their exit status 3 (SPI buffers read with the
-//! default layouts: refused with no output).
+//! misleading decode with their exit status 3 (a file judged whole and SPI
+//! buffers read with the default layouts: refused with no output).
 
 #![cfg(feature = "cli")]
 
 mod cli_common;
 
-use cli_common::{data, data_arg, run, summary_line};
+use cli_common::{data, data_arg, run, scratch, summary_line};
 
 const MAX_LINE: usize = 1 << 20;
 
@@ -178,11 +178,19 @@ fn warned(counts: [u64; 6], warning: &str) -> String {
     summary_line(counts) + "robowire: warning: " + warning + "\n"
 }
 
-/// The stderr of a decode that warns and exits with status 3.
+/// The stderr of a decode from a stream that warns and exits with status 3.
 fn failed(counts: [u64; 6], warning: &str) -> String {
     warned(counts, warning)
         + "robowire: the output is probably false (exit status 3); --allow-noise accepts it \
            (see docs/cli.md)\n"
+}
+
+/// The stderr of a decode from a file that warns, prints nothing and exits
+/// with status 3: the file is judged whole first.
+fn withheld(counts: [u64; 6], warning: &str) -> String {
+    warned(counts, warning)
+        + "robowire: the output is probably false, so nothing was printed (exit status 3); \
+           --allow-noise prints it (see docs/cli.md)\n"
 }
 
 /// `args` with `--allow-noise` added.
@@ -198,7 +206,7 @@ fn hex_text_without_hex_fails() {
                    or --datagrams when each line is one datagram";
     let r = run(&args, b"");
     assert_eq!((r.code, r.stdout.len()), (3, 0));
-    assert_eq!(r.stderr, failed([0, 12720, 12720, 0, 0, 0], warning));
+    assert_eq!(r.stderr, withheld([0, 12720, 12720, 0, 0, 0], warning));
     // Insisting keeps the warning and exits 0.
     let r = run(&allowing(&args), b"");
     assert_eq!((r.code, r.stdout.len()), (0, 0));
@@ -225,8 +233,14 @@ fn the_wrong_protocol_fails() {
     let warning = "most of the input did not decode (96 % skipped, 15052 candidates rejected, \
                    70 frames): check the protocol, --from and --dialect; frames found this way \
                    may be false";
-    // The 70 false frames are printed; the status says they are noise.
+    // From a file, judged whole, the 70 false frames are not printed.
     let r = run(&args, b"");
+    assert_eq!((r.code, r.lines().len()), (3, 0));
+    assert_eq!(r.stderr, withheld([70, 15920, 15325, 0, 15052, 0], warning));
+    // From a stream they are printed as they come; the status says they are
+    // noise.
+    let bytes = std::fs::read(&capture).unwrap();
+    let r = run(&["decode", "telemetrix"], &bytes);
     assert_eq!((r.code, r.lines().len()), (3, 70));
     assert_eq!(r.stderr, failed([70, 15920, 15325, 0, 15052, 0], warning));
     let allowed = run(&allowing(&args), b"");
@@ -239,7 +253,7 @@ fn the_wrong_protocol_fails() {
     assert_eq!((r.code, r.stdout.len()), (3, 0));
     assert_eq!(
         r.stderr,
-        failed(
+        withheld(
             [0, 15920, 15920, 0, 0, 0],
             "most of the input did not decode (100 % skipped, 0 candidates rejected, 0 frames): \
              check the protocol, --from; frames found this way may be false"
@@ -252,9 +266,91 @@ fn the_wrong_protocol_fails() {
     assert!(r.stderr.contains(
         "0 frames): check the protocol, --from and --layout; frames found this way may be false\n"
     ));
-    // The wrong layout: 5 false frames among 53-byte telemetry.
+    // The wrong layout: 5 false frames among 53-byte telemetry, printed
+    // from a stream only.
     let r = run(&["decode", "omnitiles", "--layout", "pos7", &capture], b"");
+    assert_eq!((r.code, r.lines().len()), (3, 0));
+    let r = run(&["decode", "omnitiles", "--layout", "pos7"], &bytes);
     assert_eq!((r.code, r.lines().len()), (3, 5));
+}
+
+#[test]
+fn a_false_decode_of_a_file_records_nothing() {
+    // The recording and the JSON lines with times are not written either.
+    let dir = scratch("withheld");
+    let mcap = dir.join("false.mcap");
+    let capture = data_arg("ble_telemetry.bin");
+    let args = ["decode", "telemetrix", "--timestamps", "-o"];
+    let r = run(
+        &[&args[..], &[mcap.to_str().unwrap(), &capture]].concat(),
+        b"",
+    );
+    assert_eq!((r.code, r.stdout.len()), (3, 0));
+    assert!(r.stderr.ends_with(
+        ", so nothing was printed (exit status 3); --allow-noise \
+                               prints it (see docs/cli.md)\n"
+    ));
+    assert!(!mcap.exists());
+    let r = run(
+        &[
+            &args[..],
+            &[mcap.to_str().unwrap(), &capture, "--allow-noise"],
+        ]
+        .concat(),
+        b"",
+    );
+    assert_eq!(r.code, 0);
+    assert!(mcap.exists());
+}
+
+#[test]
+fn a_file_judged_whole_reports_its_bad_lines_once() {
+    // The first pass reads the file quietly; the one that prints reports.
+    let dir = scratch("judged");
+    let file = dir.join("datagrams.hex");
+    let long = "0".repeat(MAX_LINE + 2);
+    std::fs::write(&file, format!("a5 50 50\na5 7g\n{long}\na5 71 71\n")).unwrap();
+    let name = file.to_str().unwrap();
+    let r = run(&["decode", "omnitiles", "--datagrams", name], b"");
+    assert_eq!((r.code, r.lines().len()), (2, 2));
+    assert_eq!(
+        r.stderr,
+        format!(
+            "robowire: {name}: line 2, column 5: invalid hex digit 'g'\n\
+             robowire: {name}: line 3: longer than 1048576 bytes\n"
+        ) + &summary_line([2, 6, 0, 0, 0, 0])
+            + "robowire: 2 invalid datagram lines\n"
+    );
+}
+
+#[test]
+fn datagrams_of_binary_input_say_so_once() {
+    let capture = data_arg("ble_telemetry.bin");
+    let expected = format!(
+        "robowire: {capture}: line 1 is binary, not hex text: --datagrams reads one datagram \
+         per line of hex; decode raw bytes without --datagrams\n"
+    );
+    let r = run(&["decode", "omnitiles", "--datagrams", &capture], b"");
+    assert_eq!((r.code, r.stdout.len(), r.stderr), (2, 0, expected));
+    // From stdin alike, and a binary line after good ones is one bad line.
+    let bytes = std::fs::read(&capture).unwrap();
+    let r = run(&["decode", "omnitiles", "--datagrams"], &bytes);
+    assert_eq!(r.code, 2);
+    assert!(
+        r.stderr.starts_with("robowire: stdin: line 1 is binary"),
+        "{}",
+        r.stderr
+    );
+    let r = run(
+        &["decode", "omnitiles", "--datagrams"],
+        b"a5 50 50\n\x00\xa5\x50\n",
+    );
+    assert_eq!((r.code, r.lines().len()), (2, 1));
+    assert!(
+        r.stderr.ends_with("robowire: 1 invalid datagram line\n"),
+        "{}",
+        r.stderr
+    );
 }
 
 #[test]
@@ -334,20 +430,20 @@ fn spi_buffers_with_the_default_layouts_are_refused() {
     );
     // Insisting prints the three false frames (one 53-byte frame, two short
     // prefixes that are the only length validating where they start) and
-    // exits 0; naming the layouts prints them and exits 3, as mostly noise.
+    // exits 0; naming the layouts exits 3, as mostly noise, and prints them
+    // from a stream only.
     let warning = "the input looks like zero-padded SPI buffers: decode it with --layout spi45";
-    for (extra, code) in [("--allow-noise", 0), ("--layout=auto", 3)] {
-        let r = run(&["decode", "omnitiles", extra, &capture], b"");
-        assert_eq!((r.code, r.lines().len()), (code, 3), "{extra}");
-        assert!(r.lines()[2].contains(r#""layout":"ble53""#));
-        let counts = [3, 8192, 8115, 61, 15, 0];
-        let stderr = if code == 0 {
-            warned(counts, warning)
-        } else {
-            failed(counts, warning)
-        };
-        assert_eq!(r.stderr, stderr, "{extra}");
-    }
+    let counts = [3, 8192, 8115, 61, 15, 0];
+    let r = run(&["decode", "omnitiles", "--allow-noise", &capture], b"");
+    assert_eq!((r.code, r.lines().len()), (0, 3));
+    assert!(r.lines()[2].contains(r#""layout":"ble53""#));
+    assert_eq!(r.stderr, warned(counts, warning));
+    let r = run(&["decode", "omnitiles", "--layout=auto", &capture], b"");
+    assert_eq!((r.code, r.lines().len()), (3, 0));
+    assert_eq!(r.stderr, withheld(counts, warning));
+    let r = run(&["decode", "omnitiles", "--layout=auto"], &bytes);
+    assert_eq!((r.code, r.lines().len()), (3, 3));
+    assert_eq!(r.stderr, failed(counts, warning));
     // One buffer per line is refused alike: the default layouts misread each.
     let lines: String = bytes
         .chunks(128)

@@ -52,8 +52,9 @@ pub struct DecodeCommon {
     /// Exit 0 even when the output is probably false (hex text without
     /// --hex, mostly noise, SPI buffers without spi45); the warning stays.
     ///
-    /// Without it such a decode exits with status 3, and OmniTiles SPI
-    /// buffers read with the default layouts print nothing.
+    /// Without it such a decode exits with status 3, and prints nothing
+    /// from a file named as INPUT (judged whole first) or from OmniTiles SPI
+    /// buffers read with the default layouts.
     #[arg(long, display_order = 7)]
     pub allow_noise: bool,
     /// Print rejected candidates too, as objects with `offset` and `error`.
@@ -71,6 +72,17 @@ pub struct DecodeCommon {
 }
 
 impl DecodeCommon {
+    /// Whether the input is a regular file named on the command line, which
+    /// can be read twice: once to judge the decode, once to print it. Stdin
+    /// (even redirected from a file), pipes, devices and ports are streams.
+    pub fn is_whole_file(&self) -> bool {
+        let path = match (&self.input, &self.live.port) {
+            (Some(path), None) if path.as_os_str() != "-" => path,
+            _ => return false,
+        };
+        std::fs::metadata(path).is_ok_and(|meta| meta.is_file())
+    }
+
     /// The input, as raw bytes or (with `--hex`) hex text, from a file, stdin
     /// or (with `--port`) a serial port.
     pub fn source(&self) -> Result<Box<dyn ByteSource>, Failure> {
@@ -92,9 +104,11 @@ Exit status: 0 on success, 2 on usage errors and invalid input (bad hex),
 1 on I/O errors, 3 when the output is probably false: a warning after the
 summary says why (hex text without --hex; most of the input skipped, over 80 %
 of its non-zero bytes, or over 8 rejected candidates per frame; OmniTiles SPI
-buffers without spi45, which with the default layouts print nothing at all).
---allow-noise makes that 0 and keeps the warning. A closed stdout pipe ends
-the run quietly.";
+buffers without spi45). A file named as INPUT is judged whole first and then
+prints nothing at all, as SPI buffers with the default layouts never do;
+stdin and ports print as they go and warn at the end. --allow-noise prints
+everything, keeps the warning and exits 0. A closed stdout pipe ends the run
+quietly.";
 
 /// Options every `encode` subcommand shares.
 #[derive(Debug, Args)]
@@ -127,6 +141,8 @@ pub struct Output {
     port: Option<BufWriter<PortSink>>,
     /// What `robowire plot` asks the decode to draw.
     pub plot: Option<PlotRequest>,
+    /// A decode run only to judge its output ([`Output::judging`]).
+    judging: bool,
 }
 
 impl Output {
@@ -140,6 +156,17 @@ impl Output {
             recorder: None,
             port: None,
             plot: None,
+            judging: false,
+        }
+    }
+
+    /// An output that writes, records and warns nothing and only observes
+    /// the decoded bytes: a whole file is decoded into it first, so that a
+    /// probably false decode prints nothing at all.
+    pub fn judging() -> Self {
+        Output {
+            judging: true,
+            ..Output::stdout()
         }
     }
 
@@ -152,6 +179,9 @@ impl Output {
 
     /// Write `bytes`.
     pub fn write(&mut self, bytes: &[u8]) -> Result<(), Failure> {
+        if self.judging {
+            return Ok(());
+        }
         if let Some(held) = &mut self.held {
             held.extend_from_slice(bytes);
             return Ok(());
@@ -228,7 +258,10 @@ impl<'o> Printer<'o> {
     /// A printer writing to `out` in the format `common` asks for;
     /// rejections are printed with `--errors`.
     pub fn new(out: &'o mut Output, common: &DecodeCommon) -> Result<Self, Failure> {
-        out.recorder = Recorder::new(common, out.plot.take())?;
+        let plot = out.plot.take();
+        if !out.judging {
+            out.recorder = Recorder::new(common, plot)?;
+        }
         Ok(Printer {
             out,
             text: Vec::with_capacity(256),
@@ -241,6 +274,9 @@ impl<'o> Printer<'o> {
         &mut self,
         event: Result<OwnedFrame<M>, Rejected<E>>,
     ) -> Result<(), Failure> {
+        if self.out.judging {
+            return Ok(());
+        }
         if let Some(recorder) = &mut self.out.recorder {
             // JSON lines with times go to stdout, or wait with the rest.
             let stdout: &mut dyn Write = match &mut self.out.held {
@@ -290,6 +326,19 @@ impl<'o> Printer<'o> {
     /// live stream's frames appear as they arrive).
     pub fn flush(&mut self) -> Result<(), Failure> {
         self.out.flush()
+    }
+
+    /// Report a problem with the input on stderr (not while judging: the
+    /// decode that prints reports it).
+    pub fn warn(&self, message: &str) {
+        if !self.out.judging {
+            eprintln!("robowire: {message}");
+        }
+    }
+
+    /// Whether this decode only judges its output ([`Output::judging`]).
+    pub fn judging(&self) -> bool {
+        self.out.judging
     }
 }
 

@@ -417,6 +417,8 @@ pub struct Lines {
     number: u64,
     name: String,
     too_long: u64,
+    /// Count long lines without reporting them ([`Lines::quiet`]).
+    quiet: bool,
 }
 
 impl Read for Input {
@@ -434,7 +436,15 @@ impl Lines {
             line: Vec::new(),
             number: 0,
             too_long: 0,
+            quiet: false,
         }
+    }
+
+    /// Count lines longer than [`MAX_LINE`] without reporting them (a decode
+    /// that only judges its output).
+    pub fn quiet(mut self, quiet: bool) -> Self {
+        self.quiet = quiet;
+        self
     }
 
     /// How many lines were skipped for being longer than [`MAX_LINE`].
@@ -486,7 +496,9 @@ impl Lines {
                 }
             } else if self.line.len() > MAX_LINE {
                 let (name, number) = (&self.name, self.number);
-                eprintln!("robowire: {name}: line {number}: longer than {MAX_LINE} bytes");
+                if !self.quiet {
+                    eprintln!("robowire: {name}: line {number}: longer than {MAX_LINE} bytes");
+                }
                 self.too_long += 1;
                 skipping = true;
                 continue;

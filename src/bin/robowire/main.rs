@@ -52,7 +52,8 @@ or absent for stdin. Streams of any size run in constant memory.
 
 Exit status: 0 on success, 2 on usage errors and invalid input, 1 on I/O errors,
 3 when a decode's output is probably false (hex text without --hex, mostly noise,
-OmniTiles SPI buffers without spi45; --allow-noise accepts it). A closed stdout
+OmniTiles SPI buffers without spi45; a file then prints nothing; --allow-noise
+accepts it). A closed stdout
 pipe ends the run quietly. `robowire decode <protocol> --help`
 documents each protocol's JSON schema.";
 
@@ -212,9 +213,9 @@ fn decode(protocol: &DecodeProtocol, out: &mut driver::Output) -> Result<Done, F
     .map(Done::Decoded)
 }
 
-/// What the checks after `protocol`'s decode may suggest, and whether the
-/// user accepts a doubtful decode (`--allow-noise`).
-fn hints(protocol: &DecodeProtocol) -> (suspicion::Hints, bool) {
+/// What the checks after `protocol`'s decode may suggest, and the options
+/// every decode shares (`--allow-noise` accepts a doubtful decode).
+fn hints(protocol: &DecodeProtocol) -> (suspicion::Hints, &driver::DecodeCommon) {
     let hex = |common: &driver::DecodeCommon| (!common.hex).then_some("--hex");
     let (hints, common) = match protocol {
         DecodeProtocol::Omnitiles(args) => (
@@ -244,11 +245,41 @@ fn hints(protocol: &DecodeProtocol) -> (suspicion::Hints, bool) {
             &args.common,
         ),
     };
-    (hints, common.allow_noise)
+    (hints, common)
+}
+
+/// A regular file is judged whole before anything is printed: decoded once
+/// into [`driver::Output::judging`] and, if its output is probably false
+/// (and the user did not pass `--allow-noise`), not printed, recorded or
+/// plotted at all. The exit status then, or `None` to run the decode that
+/// prints (which reports any other problem the first pass met). Stdin and
+/// ports are streams: their frames are printed as they come, and the
+/// warning follows.
+fn judge_whole_file(verb: &Verb) -> Option<ExitCode> {
+    let (hints, common) = hints(verb.decoding()?);
+    if common.allow_noise || !common.is_whole_file() {
+        return None;
+    }
+    let mut out = driver::Output::judging();
+    let Ok(Done::Decoded(decoded)) = run(verb, &mut out) else {
+        return None;
+    };
+    let (start, zeros) = out.observed();
+    let suspicion = suspicion::assess(&decoded.stats, start, zeros, hints)?;
+    if !suspicion.fails || decoded.failure.is_some() {
+        return None;
+    }
+    eprintln!("{}", driver::summary(&decoded.stats));
+    eprintln!("robowire: warning: {}", suspicion.warning);
+    eprintln!("robowire: {}", suspicion::withheld());
+    Some(ExitCode::from(suspicion::STATUS))
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if let Some(status) = judge_whole_file(&cli.command) {
+        return status;
+    }
     let mut out = driver::Output::stdout();
     let mut result = run(&cli.command, &mut out);
     // Output still held back at the end (an input shorter than the SPI
@@ -259,7 +290,8 @@ fn main() -> ExitCode {
     let suspicion = match (&result, cli.command.decoding()) {
         (Ok(Done::Decoded(decoded)), Some(protocol)) => {
             let (start, zeros) = out.observed();
-            let (hints, allow_noise) = hints(protocol);
+            let (hints, common) = hints(protocol);
+            let allow_noise = common.allow_noise;
             suspicion::assess(&decoded.stats, start, zeros, hints).map(|s| (s, allow_noise))
         }
         _ => None,

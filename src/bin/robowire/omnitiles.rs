@@ -231,9 +231,10 @@ fn decode_datagrams<S>(
 where
     S: omnitiles::Side<Message: Serialize>,
 {
-    let mut lines = Lines::new(input);
+    let mut lines = Lines::new(input).quiet(printer.judging());
     let mut datagram = Vec::new();
     let mut bad = 0u64;
+    let mut decoded_any = false;
     loop {
         // Flush before a read that may wait, so frames go out as lines arrive.
         if !lines.has_buffered() {
@@ -250,13 +251,22 @@ where
             }
         };
         if let Err(message) = hex_line(number, line, &mut datagram) {
-            eprintln!("robowire: {}: {message}", lines.name());
+            // Binary input is one mistake (the wrong option), not a line each.
+            if !decoded_any && line.iter().any(|&b| is_binary(b)) {
+                return Err(Failure::Invalid(format!(
+                    "{}: line {number} is binary, not hex text: --datagrams reads one \
+                     datagram per line of hex; decode raw bytes without --datagrams",
+                    lines.name()
+                )));
+            }
+            printer.warn(&format!("{}: {message}", lines.name()));
             bad += 1;
             continue;
         }
         if datagram.is_empty() {
             continue;
         }
+        decoded_any = true;
         printer.observe(&datagram)?;
         for event in decoder.decode(&datagram) {
             printer.event(event)?;
@@ -271,6 +281,12 @@ where
         stats: decoder.stats(),
         failure,
     })
+}
+
+/// A byte no line of hex text holds: a control character other than tab
+/// and carriage return, DEL, or any byte over 0x7f.
+fn is_binary(byte: u8) -> bool {
+    (byte < 0x20 && byte != b'\t' && byte != b'\r') || byte >= 0x7f
 }
 
 /// Run `encode omnitiles`.

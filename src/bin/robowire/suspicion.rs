@@ -2,8 +2,11 @@
 //! raw bytes, like zero-padded OmniTiles SPI buffers read without the `spi45`
 //! layout, or most of it did not decode (the wrong protocol, direction or
 //! layout). Each gives a warning after the summary and, unless the user
-//! passes `--allow-noise`, exit status [`STATUS`]; SPI buffers read with the
-//! default layouts are refused before anything is printed.
+//! passes `--allow-noise`, exit status [`STATUS`]. A regular file is judged
+//! whole before anything is printed (a first pass without output), so a
+//! false decode of a file prints nothing; stdin and ports stream and warn at
+//! the end. SPI buffers read with the default layouts are refused before
+//! anything is printed from any input.
 //!
 //! The thresholds come from the sample captures in `tests/data` and corrupted
 //! copies of them (`tests/cli_noise.rs` measures them, docs/cli.md has the
@@ -101,6 +104,15 @@ pub fn failed() -> String {
     format!(
         "the output is probably false (exit status {STATUS}); --allow-noise accepts it \
          (see docs/cli.md)"
+    )
+}
+
+/// What is said after the warning when a whole file's decode is probably
+/// false: nothing was printed.
+pub fn withheld() -> String {
+    format!(
+        "the output is probably false, so nothing was printed (exit status {STATUS}); \
+         --allow-noise prints it (see docs/cli.md)"
     )
 }
 
