@@ -322,6 +322,47 @@ fn a_port_with_input_is_a_usage_error() {
 }
 
 #[test]
+fn what_is_no_serial_port_or_rate_is_refused_in_one_line() {
+    let _one = serial();
+    let advice = "not a serial port: without --port, decode reads a file named as INPUT and \
+                  encode writes to stdout\n";
+    let here = env!("CARGO_MANIFEST_DIR");
+    let cargo_toml = format!("{here}/Cargo.toml");
+    for (device, what) in [
+        (cargo_toml.as_str(), "a regular file"),
+        (here, "a directory"),
+        ("/dev/null", "a device that is no terminal"),
+    ] {
+        let expected = format!("robowire: {device} is {what}, {advice}");
+        let decode = run(&["decode", "omnitiles", "--port", device], b"");
+        assert_eq!(
+            (decode.code, decode.stderr.as_str()),
+            (2, expected.as_str())
+        );
+        let encode = run(&["encode", "omnitiles", "--port", device], b"");
+        assert_eq!(
+            (encode.code, encode.stderr.as_str()),
+            (2, expected.as_str())
+        );
+    }
+    // A rate of 0 baud is no rate (and would divide the estimated times by 0).
+    for verb in ["decode", "encode"] {
+        let out = run(
+            &[verb, "omnitiles", "--port", "/dev/null", "--baud", "0"],
+            b"",
+        );
+        assert_eq!(out.code, 2);
+        assert!(
+            out.stderr.contains("invalid value '0' for '--baud <RATE>'"),
+            "{}",
+            out.stderr
+        );
+    }
+    let out = run(&["decode", "omnitiles", "--timestamps", "--baud", "0"], b"");
+    assert_eq!(out.code, 2);
+}
+
+#[test]
 fn mcap_is_not_written_to_a_terminal() {
     let _one = serial();
     let (_master, slave) = pty_pair();

@@ -6,7 +6,7 @@
 
 use crate::Failure;
 use clap::Args;
-use std::io::{self, Read, Write};
+use std::io::{self, IsTerminal, Read, Write};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -39,6 +39,7 @@ pub struct LiveArgs {
         long,
         value_name = "RATE",
         default_value_t = 115_200,
+        value_parser = clap::value_parser!(u32).range(1..),
         display_order = 8
     )]
     pub baud: u32,
@@ -60,12 +61,18 @@ pub struct EncodePort {
     #[arg(long, value_name = "DEVICE", conflicts_with = "hex")]
     pub port: Option<String>,
     /// The port's baud rate (8N1).
-    #[arg(long, value_name = "RATE", default_value_t = 115_200)]
+    #[arg(
+        long,
+        value_name = "RATE",
+        default_value_t = 115_200,
+        value_parser = clap::value_parser!(u32).range(1..),
+    )]
     pub baud: u32,
 }
 
 /// Open `device` at `baud`, 8N1, its reads and writes waiting at most
-/// `timeout`. A missing device or a permission problem is one line.
+/// `timeout`. A missing device, a permission problem or a path that is no
+/// serial port is one line.
 fn open(
     device: &str,
     baud: u32,
@@ -75,6 +82,9 @@ fn open(
         .timeout(timeout)
         .open()
         .map_err(|error| {
+            if let Some(failure) = not_a_port(device) {
+                return failure;
+            }
             let error = io::Error::from(error);
             let hint = match error.kind() {
                 io::ErrorKind::PermissionDenied => {
@@ -87,6 +97,26 @@ fn open(
                 error,
             }
         })
+}
+
+/// Why `device`, which did not open as a serial port, is none: a regular
+/// file or a directory, or a device that is no terminal (`/dev/null`); the
+/// system's own words for that ("Not a typewriter") would only puzzle.
+fn not_a_port(device: &str) -> Option<Failure> {
+    let meta = std::fs::metadata(device).ok()?;
+    let what = if meta.is_file() {
+        "a regular file"
+    } else if meta.is_dir() {
+        "a directory"
+    } else if std::fs::File::open(device).is_ok_and(|file| !file.is_terminal()) {
+        "a device that is no terminal"
+    } else {
+        return None;
+    };
+    Some(Failure::Invalid(format!(
+        "{device} is {what}, not a serial port: without --port, decode reads a file named \
+         as INPUT and encode writes to stdout"
+    )))
 }
 
 /// A serial port as the decode loop reads it: whatever has arrived, waiting
