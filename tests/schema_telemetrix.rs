@@ -992,6 +992,12 @@ const BAD_LINES: &[(Dialect, &str, &str)] = &[
     ),
     (
         M13,
+        r#"{"type":"encoder_report","pin_a":14,"steps":0}"#,
+        "field `steps` must not be 0: the firmware reports an encoder only when it moved \
+         (-128..=-1 or 1..=127)",
+    ),
+    (
+        M13,
         r#"{"type":"sonar_distance","trig":9,"echo":10,"cm":"far"}"#,
         "field `cm` must be an integer or \"no_echo\", \"out_of_range\" or \"stale\", found \"far\"",
     ),

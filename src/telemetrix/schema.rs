@@ -456,6 +456,17 @@ fn i8_(f: &mut Fields<'_>, key: &str) -> Result<i8, String> {
     f.int(key, -128, 127).map(|v| v as i8)
 }
 
+/// Encoder steps: a signed byte, never 0.
+fn steps_(f: &mut Fields<'_>, key: &str) -> Result<i8, String> {
+    match i8_(f, key)? {
+        0 => Err(format!(
+            "field `{key}` must not be 0: the firmware reports an encoder only when it moved \
+             (-128..=-1 or 1..=127)"
+        )),
+        steps => Ok(steps),
+    }
+}
+
 fn i16_(f: &mut Fields<'_>, key: &str) -> Result<i16, String> {
     f.int(key, -32768, 32767).map(|v| v as i16)
 }

@@ -1711,7 +1711,8 @@ macro_rules! report_table {
                         Encoder {
                             /// GPIO A (< 30).
                             pin: u8,
-                            /// Steps.
+                            /// Steps, never 0 (the firmware reports only
+                            /// when the encoder moved).
                             steps: i8,
                         },
                     }
@@ -1734,7 +1735,7 @@ macro_rules! report_table {
                         }
                     }
                     read(f, dialect, buf, kind) {
-                        Report::Encoder { pin: pin_(f, "pin_a")?, steps: i8_(f, "steps")? }
+                        Report::Encoder { pin: pin_(f, "pin_a")?, steps: steps_(f, "steps")? }
                     }
                 };
             /// 20 SENSOR_REPORT.
