@@ -140,7 +140,7 @@ async fn host(port: SerialStream) -> Result<()> {
 
     let stats = link.telemetry.decoder().stats();
     println!(
-        "host: link: {} frames, {} checksum errors, {} other rejections, {} of {} bytes skipped",
+        "host: link: {} frames, {} checksum failures, {} other rejections, {} of {} bytes skipped",
         stats.frames, stats.checksum_failures, stats.other_rejections, stats.skipped, stats.bytes
     );
     if let Some(rejected) = link.telemetry.decoder().last_rejected() {

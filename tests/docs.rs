@@ -1,7 +1,9 @@
 //! The documentation's own checks: the README stays a front page, no code block
 //! hides lines, every relative link and anchor resolves, every guide with Rust
 //! examples is compiled as a doctest, the feature tables list every feature,
-//! and the interrupt handler shown in docs/embedded.md is the firmware example's.
+//! the interrupt handler shown in docs/embedded.md is the firmware example's,
+//! the tokio example's dependency list and the tool's messages and exit
+//! statuses docs/cli.md quotes are the code's.
 
 use std::collections::BTreeMap;
 use std::fs;
@@ -313,6 +315,67 @@ fn the_embedded_guide_shows_the_firmware_project_files() {
 }
 
 /// docs/cli.md's claims about what the tool does, checked by running it.
+/// The words of `text` separated by single spaces (prose wrapped anyhow).
+fn words(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+#[test]
+fn the_tokio_example_lists_the_dependencies_it_needs() {
+    // Each `cargo add NAME@V --features A,B` of docs/integrations.md names a
+    // crate the example's own build (Cargo.toml) has with those features.
+    let guide = read(&root().join("docs/integrations.md"));
+    let manifest = read(&root().join("Cargo.toml"));
+    let mut added = Vec::new();
+    for line in guide.lines().filter_map(|l| l.strip_prefix("cargo add ")) {
+        let line = line.split('#').next().unwrap();
+        let mut parts = line.split_whitespace();
+        let name = parts.next().unwrap().split('@').next().unwrap();
+        let features: Vec<&str> = parts
+            .skip_while(|&p| p != "--features")
+            .nth(1)
+            .map_or(Vec::new(), |f| f.split(',').collect());
+        added.push(name.to_owned());
+        if name == "robowire" {
+            continue;
+        }
+        let entry = manifest
+            .lines()
+            .find(|l| l.starts_with(&format!("{name} = ")))
+            .unwrap_or_else(|| panic!("Cargo.toml has no {name}"));
+        for feature in features {
+            assert!(
+                entry.contains(&format!("\"{feature}\"")),
+                "{name}: Cargo.toml does not build the example with {feature}: {entry}"
+            );
+        }
+    }
+    assert_eq!(added, ["robowire", "tokio", "tokio-util", "futures-util"]);
+    // And the example uses what they bring.
+    for import in [
+        "use futures_util::{SinkExt, StreamExt};",
+        "use tokio_util::codec::Framed;",
+    ] {
+        assert!(guide.contains(import), "{import}");
+    }
+}
+
+#[test]
+fn the_export_benchmark_runs_as_often_as_the_docs_say() {
+    let script = read(&root().join("benches/cli_export.py"));
+    let runs = script
+        .split("\"--runs\", type=int, default=")
+        .nth(1)
+        .and_then(|rest| rest.split(')').next())
+        .expect("the script's default --runs");
+    let cli = words(&read(&root().join("docs/cli.md")));
+    assert!(
+        cli.contains(&format!("interleaved, best of {runs} (CPU time")),
+        "docs/cli.md does not say best of {runs}"
+    );
+    assert!(script.contains("os.environ.get(\"CARGO_TARGET_DIR\""));
+}
+
 #[cfg(feature = "cli")]
 mod cli_claims {
     use super::{read, root};
@@ -383,8 +446,9 @@ mod cli_claims {
 
     #[test]
     fn the_false_spi_frames_are_the_tools() {
-        let out =
-            robowire("decode omnitiles --from tile --layout auto tests/data/spi_telemetry.bin");
+        let out = robowire(
+            "decode omnitiles --from tile --layout auto --allow-noise tests/data/spi_telemetry.bin",
+        );
         let lens: Vec<String> = String::from_utf8(out.stdout)
             .unwrap()
             .lines()
@@ -437,6 +501,59 @@ mod cli_claims {
         ] {
             assert!(help.contains(status), "--help lacks {status:?}");
         }
+    }
+
+    /// `robowire ARGS` with `stdin` as its input.
+    fn robowire_with(args: &str, stdin: &str) -> Output {
+        use std::io::Write;
+        use std::process::Stdio;
+        let mut child = Command::new(env!("CARGO_BIN_EXE_robowire"))
+            .args(args.split_whitespace())
+            .current_dir(root())
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        child
+            .stdin
+            .take()
+            .unwrap()
+            .write_all(stdin.as_bytes())
+            .unwrap();
+        child.wait_with_output().unwrap()
+    }
+
+    #[test]
+    fn the_messages_quoted_are_the_tools() {
+        let text = super::words(&cli_md());
+        // A whole file judged probably false prints nothing and says so.
+        let out = robowire("decode telemetrix tests/data/ble_telemetry.bin");
+        let stderr = String::from_utf8(out.stderr).unwrap();
+        let withheld = stderr.lines().last().unwrap();
+        let withheld = withheld.strip_prefix("robowire: ").unwrap();
+        let quoted = withheld.strip_suffix(" (see docs/cli.md)").unwrap();
+        assert!(text.contains(quoted), "docs/cli.md lacks {quoted:?}");
+        // Pixy2's getBlocks with signature map 0, as the encode example's
+        // fourth line.
+        let out = robowire_with(
+            "encode pixy2",
+            r#"{"type":"get_blocks","sigmap":0,"max_blocks":3}"#,
+        );
+        let stderr = String::from_utf8(out.stderr).unwrap();
+        let refusal = stderr.lines().next().unwrap().replace("line 1:", "line 4:");
+        assert!(
+            cli_md().lines().any(|l| l == refusal),
+            "docs/cli.md does not show {refusal:?}"
+        );
+        // The binary-input line of --datagrams.
+        let out = robowire("decode omnitiles --datagrams tests/data/ble_telemetry.bin");
+        let stderr = String::from_utf8(out.stderr).unwrap();
+        assert!(
+            stderr.contains("line 1 is binary, not hex text: "),
+            "{stderr}"
+        );
+        assert!(text.contains("`line 1 is binary, not hex text: …`"));
     }
 
     #[test]

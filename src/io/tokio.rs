@@ -214,7 +214,7 @@ impl<F: FrameRules, const N: usize, Y> FrameCodec<F, N, Y> {
         }
     }
 
-    /// The decoder's counters: frames, skipped bytes, checksum errors and
+    /// The decoder's counters: frames, skipped bytes, checksum failures and
     /// other rejections.
     pub fn stats(&self) -> Stats {
         self.decoder.stats()
