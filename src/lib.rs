@@ -127,8 +127,6 @@ pub mod stream;
 pub mod telemetrix;
 
 pub use encode::{Encode, EncodeError, FrameBuf};
-#[allow(deprecated)]
-pub use stream::Framed;
 pub use stream::{
     Check, Counter, Event, Feed, Flush, Frame, FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats,
     StreamDecoder,

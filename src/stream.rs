@@ -293,10 +293,6 @@ pub struct OwnedFrame<M> {
     pub message: M,
 }
 
-/// The old name of [`OwnedFrame`].
-#[deprecated(since = "0.2.0", note = "renamed to `OwnedFrame`")]
-pub type Framed<M> = OwnedFrame<M>;
-
 /// A rejected candidate or an unparseable frame, with its stream offset.
 ///
 /// With the `serde` feature it is one flat object: `offset`, then the

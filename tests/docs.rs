@@ -314,7 +314,6 @@ fn the_embedded_guide_shows_the_firmware_project_files() {
     );
 }
 
-/// docs/cli.md's claims about what the tool does, checked by running it.
 /// The words of `text` separated by single spaces (prose wrapped anyhow).
 fn words(text: &str) -> String {
     text.split_whitespace().collect::<Vec<_>>().join(" ")
@@ -376,6 +375,7 @@ fn the_export_benchmark_runs_as_often_as_the_docs_say() {
     assert!(script.contains("os.environ.get(\"CARGO_TARGET_DIR\""));
 }
 
+/// docs/cli.md's claims about what the tool does, checked by running it.
 #[cfg(feature = "cli")]
 mod cli_claims {
     use super::{read, root};

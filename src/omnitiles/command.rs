@@ -174,19 +174,10 @@ impl Command {
     }
 
     /// The command with message id `id` and `payload`, if the id is a command
-    /// and the payload has its length.
-    #[deprecated(
-        since = "0.2.0",
-        note = "parse the whole frame with `Command::try_from(frame)`"
-    )]
-    pub const fn from_parts(id: u8, payload: &[u8]) -> Option<Command> {
-        Command::from_id_and_payload(id, payload)
-    }
-
-    /// The command with message id `id` and `payload`, if the id is a command
-    /// and the payload has its length.
-    #[inline]
-    pub(crate) const fn from_id_and_payload(id: u8, payload: &[u8]) -> Option<Command> {
+    /// and the payload has its length: the table, one arm per command, that
+    /// the branch-free [`Command::parse_framed`] is tested against.
+    #[cfg(test)]
+    const fn from_id_and_payload(id: u8, payload: &[u8]) -> Option<Command> {
         let motor = if id >> 4 == 3 { Motor::M1 } else { Motor::M2 };
         Some(match (id, payload) {
             (id::PING, []) => Command::Ping,

@@ -406,44 +406,6 @@ impl<S: TelemetrySide> Framing<S> {
     }
 }
 
-impl Framing<Host> {
-    /// Accept telemetry in `layouts` only: a host's view (`--from tile`).
-    #[deprecated(
-        since = "0.2.0",
-        note = "use `Framing::<Host>::new().with_layouts(layouts)`"
-    )]
-    pub const fn telemetry(layouts: Layouts) -> Self {
-        Framing::new().with_layouts(layouts)
-    }
-}
-
-impl Framing<Both> {
-    /// Accept commands only: a tile's view of the link (`--from host`). As in
-    /// 0.1 this is a framing of both directions with no telemetry layout, so
-    /// its decoder yields [`Message`]s; [`Framing<Device>`] decodes the same
-    /// frames as [`Command`]s, without the telemetry code.
-    #[deprecated(
-        since = "0.2.0",
-        note = "use `Framing::<Device>::new()` (a `DeviceDecoder`, which yields `Command`s)"
-    )]
-    pub const fn commands() -> Self {
-        Framing::new().with_layouts(Layouts::NONE)
-    }
-
-    /// Accept commands and telemetry in the four documented layouts.
-    #[deprecated(since = "0.2.0", note = "use `Framing::<Both>::new()`")]
-    pub const ANY: Framing<Both> = Framing::new();
-
-    /// Accept commands and telemetry in `layouts`.
-    #[deprecated(
-        since = "0.2.0",
-        note = "use `Framing::<Both>::new().with_layouts(layouts)`"
-    )]
-    pub const fn any(layouts: Layouts) -> Self {
-        Framing::new().with_layouts(layouts)
-    }
-}
-
 impl<S: Side> Default for Framing<S> {
     fn default() -> Self {
         Framing::new()

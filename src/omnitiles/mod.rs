@@ -216,22 +216,3 @@ pub const fn device_decoder() -> DeviceDecoder {
 pub const fn both_decoder() -> BothDecoder {
     StreamDecoder::new(Framing::new())
 }
-
-/// The old name of [`Message`].
-#[deprecated(since = "0.2.0", note = "renamed to `Message`")]
-pub type Packet = Message;
-
-/// The old stream decoder: now one type per side ([`HostDecoder`],
-/// [`DeviceDecoder`], [`BothDecoder`]).
-#[deprecated(
-    since = "0.2.0",
-    note = "use `HostDecoder`, `DeviceDecoder` or `BothDecoder`"
-)]
-pub type Decoder<S = Both> = StreamDecoder<Framing<S>, BOTH_BUFFER>;
-
-/// The old buffer size constant.
-#[deprecated(
-    since = "0.2.0",
-    note = "use `HOST_BUFFER`, `DEVICE_BUFFER` or `BOTH_BUFFER`"
-)]
-pub const BUFFER_LEN: usize = BOTH_BUFFER;

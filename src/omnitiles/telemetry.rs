@@ -260,17 +260,6 @@ impl Telemetry {
     /// The longest telemetry frame (the 53-byte BLE layout).
     pub const MAX_LEN: usize = MAX_FRAME_LEN;
 
-    /// Decode one complete frame whose length selects its layout. Returns
-    /// `None` unless the frame starts `a5 60`, has a layout's length and a valid
-    /// checksum.
-    #[deprecated(
-        since = "0.2.0",
-        note = "use `Telemetry::try_from(frame)`, which says what is wrong"
-    )]
-    pub fn from_frame(frame: &[u8]) -> Option<Telemetry> {
-        Telemetry::try_from(frame).ok()
-    }
-
     /// A frame that passed framing (start byte, telemetry id, a layout's
     /// length and checksum already checked) as telemetry.
     #[inline(always)]

@@ -48,10 +48,6 @@ pub struct Envelope<M> {
     pub body: M,
 }
 
-/// The old name of [`Envelope`].
-#[deprecated(since = "0.2.0", note = "renamed to `Envelope`")]
-pub type Packet<M> = Envelope<M>;
-
 impl<M> Envelope<M> {
     /// `body` in `form`.
     pub const fn new(form: Form, body: M) -> Self {

@@ -106,9 +106,6 @@ pub trait Side: sealed::Sealed + Copy + Eq + core::hash::Hash + core::fmt::Debug
     type Owned;
     /// Longest frame a candidate can grow to.
     const MAX_FRAME_LEN: usize;
-    /// The old name of [`Side::MAX_FRAME_LEN`].
-    #[deprecated(since = "0.2.0", note = "renamed to `MAX_FRAME_LEN`")]
-    const MAX_FRAME: usize = Self::MAX_FRAME_LEN;
     /// Whether `packet_type` is accepted at all.
     fn accepts_type(packet_type: u8) -> bool;
     /// Check the type and length bytes of a header.

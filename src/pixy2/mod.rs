@@ -137,8 +137,6 @@ mod table;
 mod wire;
 
 pub use blocks::{Block, BlockIter, Blocks, BlocksBuf, MAX_BLOCKS};
-#[allow(deprecated)]
-pub use envelope::Packet;
 pub use envelope::{Envelope, EvenIfRefused, Message, MessageBuf};
 pub use error::{DeviceError, Error, Malformed, NameError};
 pub use features::{
@@ -147,9 +145,6 @@ pub use features::{
 };
 pub use framing::{Both, Device, Framing, Host, Side};
 
-/// The old name of [`Both`].
-#[deprecated(since = "0.2.0", note = "renamed to `Both` (`robowire::side::Both`)")]
-pub type Any = Both;
 pub use pair::{PairError, ProgSwitch, Query};
 pub use quirk::Quirk;
 pub use request::{
@@ -162,10 +157,6 @@ pub use wire::{
     checksum, packet_type, Form, DEVICE_MAX_PAYLOAD, MAX_FRAME_LEN, MAX_PAYLOAD, SYNC_CHECKSUM,
     SYNC_NO_CHECKSUM,
 };
-
-/// The old name of [`MAX_FRAME_LEN`].
-#[deprecated(since = "0.2.0", note = "renamed to `MAX_FRAME_LEN`")]
-pub const MAX_FRAME: usize = MAX_FRAME_LEN;
 
 use crate::stream::StreamDecoder;
 
@@ -185,10 +176,6 @@ pub type DeviceDecoder = StreamDecoder<Framing<Device>, DEVICE_BUFFER>;
 /// Decodes both directions (captures, tooling).
 pub type BothDecoder = StreamDecoder<Framing<Both>, BOTH_BUFFER>;
 
-/// The old name of [`BothDecoder`].
-#[deprecated(since = "0.2.0", note = "renamed to `BothDecoder`")]
-pub type Decoder = BothDecoder;
-
 /// A host decoder accepting both frame forms.
 pub const fn host_decoder() -> HostDecoder {
     StreamDecoder::new(Framing::new())
@@ -202,10 +189,4 @@ pub const fn device_decoder() -> DeviceDecoder {
 /// A both-direction decoder accepting both frame forms.
 pub const fn both_decoder() -> BothDecoder {
     StreamDecoder::new(Framing::new())
-}
-
-/// The old name of [`both_decoder`].
-#[deprecated(since = "0.2.0", note = "renamed to `both_decoder`")]
-pub const fn decoder() -> BothDecoder {
-    both_decoder()
 }

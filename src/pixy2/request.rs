@@ -667,17 +667,6 @@ pub(crate) fn check_request_header(packet_type: u8, len: u8) -> Result<(), Error
     }
 }
 
-impl Request {
-    /// Parse a request from its type and payload, as the device reads it.
-    #[deprecated(
-        since = "0.2.0",
-        note = "parse one whole frame with `Request::try_from(frame)`"
-    )]
-    pub fn parse(packet_type: u8, payload: &[u8]) -> Result<Self, Error> {
-        Self::from_payload(packet_type, payload)
-    }
-}
-
 /// The `custom` row: a name of any length.
 impl ChangeProg {
     fn payload_len(&self) -> usize {

@@ -293,16 +293,6 @@ impl<'a> Response<'a> {
 
     /// Parse a response from its type and payload (blocks and features are
     /// borrowed from `payload`).
-    #[deprecated(
-        since = "0.2.0",
-        note = "parse one whole frame with `Response::try_from(frame)`"
-    )]
-    pub fn parse(packet_type: u8, payload: &'a [u8]) -> Result<Self, Error> {
-        Self::from_payload(packet_type, payload)
-    }
-
-    /// Parse a response from its type and payload (blocks and features are
-    /// borrowed from `payload`).
     #[inline(always)]
     pub(crate) fn from_payload(packet_type: u8, payload: &'a [u8]) -> Result<Self, Error> {
         // Each arm checks the length its type needs, the same test as

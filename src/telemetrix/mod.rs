@@ -359,66 +359,6 @@ pub const fn both_decoder() -> BothDecoder {
     BothDecoder::new(Framing::new())
 }
 
-/// Renamed to [`HostDecoder`].
-#[deprecated(since = "0.2.0", note = "renamed to `HostDecoder`")]
-pub type ReportDecoder = HostDecoder;
-
-/// Renamed to [`DeviceDecoder`].
-#[deprecated(since = "0.2.0", note = "renamed to `DeviceDecoder`")]
-pub type CommandDecoder = DeviceDecoder;
-
-/// Renamed to [`HostDecoder`].
-#[deprecated(since = "0.2.0", note = "renamed to `HostDecoder`")]
-pub type Decoder = HostDecoder;
-
-/// Renamed to [`LenientHostDecoder`].
-#[deprecated(since = "0.2.0", note = "renamed to `LenientHostDecoder`")]
-pub type LenientReportDecoder = LenientHostDecoder;
-
-/// Renamed to [`Framing<Host>`](Framing).
-#[deprecated(since = "0.2.0", note = "renamed to `Framing<Host>`")]
-pub type ReportFraming = Framing<Host>;
-
-/// Renamed to [`Framing<Device>`](Framing).
-#[deprecated(since = "0.2.0", note = "renamed to `Framing<Device>`")]
-pub type CommandFraming = Framing<Device>;
-
-/// Renamed to [`CommandBuf`].
-#[deprecated(since = "0.2.0", note = "renamed to `CommandBuf`")]
-pub type OwnedCommand = CommandBuf;
-
-/// Renamed to [`ReportBuf`].
-#[deprecated(since = "0.2.0", note = "renamed to `ReportBuf`")]
-pub type OwnedReport = ReportBuf;
-
-/// Renamed to [`Command`].
-#[deprecated(since = "0.2.0", note = "renamed to `Command`")]
-pub type CommandRef<'a> = Command<'a>;
-
-/// Renamed to [`Report`].
-#[deprecated(since = "0.2.0", note = "renamed to `Report`")]
-pub type ReportRef<'a> = Report<'a>;
-
-/// Renamed to [`HOST_BUFFER`].
-#[deprecated(since = "0.2.0", note = "renamed to `HOST_BUFFER`")]
-pub const REPORT_BUFFER: usize = HOST_BUFFER;
-
-/// Renamed to [`DEVICE_BUFFER`].
-#[deprecated(since = "0.2.0", note = "renamed to `DEVICE_BUFFER`")]
-pub const COMMAND_BUFFER: usize = DEVICE_BUFFER;
-
-/// Parse one complete report frame: now [`Report::parse_in`].
-#[deprecated(since = "0.2.0", note = "use `Report::parse_in(frame, dialect)`")]
-pub fn parse_report(dialect: Dialect, frame: &[u8]) -> Result<Report<'_>, Error> {
-    Report::parse_in(frame, dialect)
-}
-
-/// Parse one complete command frame: now [`Command::parse_in`].
-#[deprecated(since = "0.2.0", note = "use `Command::parse_in(frame, dialect)`")]
-pub fn parse_command(dialect: Dialect, frame: &[u8]) -> Result<Command<'_>, Error> {
-    Command::parse_in(frame, dialect)
-}
-
 /// A message paired with the dialect to encode it for, so that
 /// [`FrameBuf::encode`](crate::FrameBuf::encode) and `encode_buf` work for
 /// every dialect. Made by `in_dialect` on [`Command`] and [`Report`].
