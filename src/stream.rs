@@ -116,7 +116,7 @@
 //!   loop returns its event, which every path of `decode` must write to one
 //!   place: a message of 64 bytes (Telemetrix's `Report`) built with narrow
 //!   stores is then copied with wide loads (store-forwarding stalls, half of
-//!   the loop's samples), which `decode_each` avoids: 1.7–1.9× the loop on
+//!   the loop's samples), which `decode_each` avoids: 2.4–2.6× the loop on
 //!   the Telemetrix reports bench. The frame the previous chunk cut is
 //!   completed first, from the bytes the framing asked for when it was kept
 //!   (not the whole chunk appended to the buffer and scanned there, as the
@@ -146,7 +146,7 @@
 //!
 //! What is left: a frame cut by a chunk boundary goes through the buffer, and
 //! reading it right after it was written costs a store-forwarding stall; the
-//! measurements and what was tried are in `docs/performance.md`.
+//! measurements and what limits each row are in `docs/performance.md`.
 
 use core::fmt;
 
@@ -650,7 +650,7 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
     /// [`parse_common`](FrameRules::parse_common) shortcut (the reports a
     /// Telemetrix Pico streams) is built straight from the frame's bytes,
     /// so a large message enum is never copied between the decoder's paths
-    /// (`cargo bench --bench telemetrix`: 1.7–1.9× the loop; docs/performance.md).
+    /// (`cargo bench --bench telemetrix`: 2.4–2.6× the loop; docs/performance.md).
     ///
     /// ```
     /// use robowire::telemetrix::{host_decoder, Report};
@@ -1180,7 +1180,7 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
     /// frame straddles chunks at most once per chunk, and inlined into the
     /// caller's loop this path costs the in-place path registers and copies
     /// of the message (measured: 15 % more instructions and 25 % more time
-    /// per 53-byte frame decoded in place; see docs/performance.md). On
+    /// per 53-byte frame decoded in place). On
     /// microcontrollers the compiler decides, which keeps one copy of the
     /// in-place step (1.2 KB less flash in the size report's decode row).
     #[cfg_attr(target_pointer_width = "64", inline(never))]

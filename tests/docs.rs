@@ -579,3 +579,34 @@ mod cli_claims {
         assert!(text.contains("or over 8 rejected candidates per frame"));
     }
 }
+
+/// docs/performance.md describes the present: short, no history of commits
+/// and sessions, and every bench row it quotes is a row the benches have.
+#[test]
+fn the_performance_guide_quotes_the_benches_as_they_are() {
+    let guide = read(&root().join("docs/performance.md"));
+    let lines = guide.lines().count();
+    assert!(lines <= 350, "docs/performance.md has {lines} lines");
+    for history in ["commit `", "| before", "session of"] {
+        assert!(
+            !guide.to_lowercase().contains(history),
+            "docs/performance.md speaks of history ({history:?})"
+        );
+    }
+    let benches: String = ["omnitiles", "pixy2", "telemetrix"]
+        .iter()
+        .map(|b| read(&root().join(format!("benches/{b}.rs"))))
+        .collect();
+    let mut quoted = 0;
+    for row in guide.lines().filter_map(|l| l.strip_prefix("| `")) {
+        let id = row.split('`').next().unwrap_or_default();
+        if id.contains('/') {
+            assert!(
+                benches.contains(&format!("\"{id}\"")),
+                "docs/performance.md quotes a bench row `{id}` that no bench has"
+            );
+            quoted += 1;
+        }
+    }
+    assert_eq!(quoted, 25, "every row of the three groups, once");
+}
