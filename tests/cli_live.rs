@@ -232,6 +232,111 @@ fn a_pico_decodes_live_at_115200_baud() {
     live_decode("telemetrix", &pico_capture(), 115_200, "pico");
 }
 
+/// A live MCAP recording of the tile's capture with `--save`, stopped with
+/// `kill -SIGNAL` after `linger` once the tool has read every byte: the exit
+/// status, the recording's and the saved capture's bytes, and the lines a
+/// decode of the capture from a file prints.
+fn record_and_stop(signal: &str, linger: Duration) -> (Option<i32>, Vec<u8>, Vec<u8>, Vec<Value>) {
+    let _one = serial();
+    let dir = scratch(&format!("live-stop-{signal}"));
+    let (recording, saved) = (dir.join("tile.mcap"), dir.join("tile.bin"));
+    let bytes = tile_capture();
+    let (mut master, slave) = pty_pair();
+    let device = slave.name().unwrap();
+    let running = spawn(&[
+        "decode",
+        "omnitiles",
+        "--errors",
+        "--port",
+        &device,
+        "--baud",
+        "1000000",
+        "--format",
+        "mcap",
+        "-o",
+        recording.to_str().unwrap(),
+        "--save",
+        saved.to_str().unwrap(),
+    ]);
+    send_at(&mut master, &bytes, 1_000_000);
+    wait_for_size(&saved, bytes.len() as u64);
+    std::thread::sleep(linger);
+    let status = Command::new("kill")
+        .args([&format!("-{signal}"), &running.child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let (code, _, stderr) = finish(running);
+    if code.is_some() {
+        assert!(stderr.starts_with("robowire: "), "the summary: {stderr}");
+    }
+    let (expected, _) = from_file("omnitiles", &bytes, &dir);
+    drop(slave);
+    (
+        code,
+        std::fs::read(&recording).unwrap(),
+        std::fs::read(&saved).unwrap(),
+        expected,
+    )
+}
+
+/// The messages of an MCAP file read from its start, as a reader without
+/// the summary does (`mcap::MessageStream`), up to the first record that is
+/// cut short.
+fn messages_read_through(recording: &[u8]) -> Vec<String> {
+    mcap::MessageStream::new(recording)
+        .unwrap()
+        .map_while(Result::ok)
+        .map(|message| String::from_utf8(message.data.to_vec()).unwrap())
+        .collect()
+}
+
+#[test]
+fn every_stop_signal_completes_the_recording() {
+    // Ctrl-C, `kill`/systemd/`docker stop` (SIGTERM) and a dropped ssh
+    // session (SIGHUP) end the run as the end of a file does.
+    for signal in ["INT", "TERM", "HUP"] {
+        let (code, recording, saved, expected) = record_and_stop(signal, Duration::ZERO);
+        assert_eq!(code, Some(0), "SIG{signal}");
+        assert_eq!(
+            saved,
+            tile_capture(),
+            "SIG{signal}: the capture is complete"
+        );
+        let summary = mcap::Summary::read(&recording).unwrap();
+        assert!(
+            summary.is_some(),
+            "SIG{signal}: the recording has its summary"
+        );
+        assert_eq!(
+            messages_read_through(&recording).len(),
+            expected.len(),
+            "SIG{signal}: every frame and rejection is recorded"
+        );
+    }
+}
+
+#[test]
+fn a_killed_recording_is_readable_up_to_its_last_chunk() {
+    // SIGKILL (or a power loss) leaves no summary, but a live recording
+    // closes a chunk at least once a second: everything received more than
+    // a second before is readable from the file's start.
+    let (code, recording, saved, expected) = record_and_stop("KILL", Duration::from_millis(1500));
+    assert_eq!(code, None, "killed by the signal");
+    assert_eq!(saved, tile_capture(), "--save is written out as it goes");
+    assert!(
+        mcap::Summary::read(&recording).is_err(),
+        "a killed recording has no footer"
+    );
+    let messages = messages_read_through(&recording);
+    assert_eq!(messages.len(), expected.len());
+    for (message, line) in messages.iter().zip(&expected) {
+        let mut message: Value = serde_json::from_str(message).unwrap();
+        message.as_object_mut().unwrap().remove("t");
+        assert_eq!(&message, line);
+    }
+}
+
 #[test]
 fn a_port_that_disappears_ends_with_an_error_and_keeps_the_frames() {
     let _one = serial();

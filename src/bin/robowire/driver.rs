@@ -386,7 +386,12 @@ where
     let mut buf = vec![0u8; chunk];
     loop {
         let n = match source.fill(&mut buf) {
-            Ok(0) => break,
+            Ok(0) if source.ended() => break,
+            Ok(0) => {
+                // A pause on a live port: write out what is held.
+                printer.flush()?;
+                continue;
+            }
             Ok(n) => n,
             Err(failure) => {
                 return Ok(Decoded {

@@ -314,6 +314,7 @@ impl Recorder {
                 error,
             }),
             Sink::Csv(tables) => tables.flush(),
+            Sink::Mcap(recording) => recording.flush(),
             _ => Ok(()),
         }
     }

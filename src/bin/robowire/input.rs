@@ -145,12 +145,21 @@ impl Input {
 
 /// A stream of bytes to decode, delivered in pieces of the caller's size.
 pub trait ByteSource {
-    /// Fill `buf` as far as the input allows; `Ok(0)` at the end. Bytes that
-    /// precede an error are returned first; the error comes on the next call.
+    /// Fill `buf` as far as the input allows; `Ok(0)` at the end, or, from
+    /// a source that is not [`ended`](Self::ended), after a while with
+    /// nothing to read (so the caller can write out what it holds). Bytes
+    /// that precede an error are returned first; the error comes on the
+    /// next call.
     fn fill(&mut self, buf: &mut [u8]) -> Result<usize, Failure>;
 
     /// Whether the next [`fill`](Self::fill) may wait for input to arrive.
     fn may_wait(&self) -> bool;
+
+    /// Whether an `Ok(0)` from [`fill`](Self::fill) was the end of the
+    /// input, not a pause.
+    fn ended(&self) -> bool {
+        true
+    }
 }
 
 /// Raw bytes, as they are.

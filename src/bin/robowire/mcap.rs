@@ -9,7 +9,9 @@
 //! of the same type with other fields (another layout) still validate, as
 //! the schema does not forbid members it does not list. Log and publish times are the receive time in
 //! nanoseconds when there is one (`--port`, `--timestamps`), otherwise the
-//! frame's index.
+//! frame's index. A live run closes a chunk at least once a second, so a
+//! recording cut short (SIGKILL, a power loss) is readable up to its last
+//! second from its start, without the summary.
 
 use crate::Failure;
 use mcap::records::MessageHeader;
@@ -17,6 +19,11 @@ use mcap::write::{NoSeek, WriteOptions, Writer};
 use serde_json::{json, Map, Value};
 use std::collections::{BTreeMap, HashMap};
 use std::io::{self, Write};
+use std::time::{Duration, Instant};
+
+/// How long a chunk stays open on a live run: a recording cut short (a
+/// killed process, a power loss) is readable up to its last closed chunk.
+const CHUNK_PERIOD: Duration = Duration::from_millis(800);
 
 /// An MCAP recording being written.
 pub struct Recording {
@@ -24,6 +31,8 @@ pub struct Recording {
     writer: Option<Writer<NoSeek<Box<dyn Write>>>>,
     /// Each kind's channel and its next sequence number.
     channels: HashMap<String, (u16, u32)>,
+    /// When the open chunk got its first message.
+    chunk_opened: Option<Instant>,
 }
 
 impl Recording {
@@ -42,6 +51,7 @@ impl Recording {
             name,
             writer: Some(writer),
             channels: HashMap::new(),
+            chunk_opened: None,
         })
     }
 
@@ -76,9 +86,24 @@ impl Recording {
             publish_time: nanoseconds,
         };
         *sequence = sequence.wrapping_add(1);
+        self.chunk_opened.get_or_insert_with(Instant::now);
         writer
             .write_to_known_channel(&header, json)
             .map_err(|error| failure(&self.name, error))
+    }
+
+    /// Close the open chunk and write it out if it has been open for
+    /// [`CHUNK_PERIOD`] (called before a read that may wait, so a live
+    /// recording is complete up to the last second or so at any time).
+    pub fn flush(&mut self) -> Result<(), Failure> {
+        let (Some(writer), Some(opened)) = (self.writer.as_mut(), self.chunk_opened) else {
+            return Ok(());
+        };
+        if opened.elapsed() < CHUNK_PERIOD {
+            return Ok(());
+        }
+        self.chunk_opened = None;
+        writer.flush().map_err(|error| failure(&self.name, error))
     }
 
     /// Write the summary and the footer: the recording is complete.

@@ -193,7 +193,12 @@ fn run_firmware(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure>
     let mut buf = vec![0u8; args.common.chunk as usize];
     loop {
         let n = match source.fill(&mut buf) {
-            Ok(0) => break,
+            Ok(0) if source.ended() => break,
+            Ok(0) => {
+                // A pause on a live port: write out what is held.
+                printer.flush()?;
+                continue;
+            }
             Ok(n) => n,
             Err(failure) => {
                 return Ok(Decoded {

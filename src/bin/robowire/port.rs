@@ -1,8 +1,9 @@
 //! Live serial ports: `--port DEVICE --baud RATE` for `decode` (bytes read
 //! as they arrive, frames stamped with their receive time) and for `encode`
-//! (frames written to the port). Ctrl-C ends a live decode as the end of the
-//! input does: every frame decoded so far is written, the summary printed,
-//! a `--save` capture completed.
+//! (frames written to the port). Ctrl-C, SIGTERM and SIGHUP end a live
+//! decode as the end of the input does: every frame decoded so far is
+//! written, the summary printed, a `--save` capture and a recording
+//! completed.
 
 use crate::Failure;
 use clap::Args;
@@ -10,10 +11,12 @@ use std::io::{self, IsTerminal, Read, Write};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
-/// How long a read waits before looking for Ctrl-C again.
+/// How long a read waits before looking for a stop (Ctrl-C, SIGTERM, SIGHUP) again.
 const READ_TIMEOUT: Duration = Duration::from_millis(50);
+/// How long a silent port is read before the outputs are written out.
+const PAUSE: Duration = Duration::from_millis(200);
 
 /// How long a write may wait for the port to drain before it fails.
 const WRITE_TIMEOUT: Duration = Duration::from_secs(10);
@@ -24,8 +27,9 @@ pub struct LiveArgs {
     /// Read from the serial port DEVICE (e.g. /dev/ttyACM0) instead of INPUT;
     /// every frame gets its receive time "t" (seconds since the start).
     ///
-    /// Ctrl-C ends the run cleanly: every frame decoded so far is written
-    /// and the summary printed.
+    /// Ctrl-C (or SIGTERM, SIGHUP) ends the run cleanly: every frame
+    /// decoded so far is written, every output completed and the summary
+    /// printed.
     #[arg(
         long,
         value_name = "DEVICE",
@@ -120,7 +124,9 @@ fn not_a_port(device: &str) -> Option<Failure> {
 }
 
 /// A serial port as the decode loop reads it: whatever has arrived, waiting
-/// at most [`READ_TIMEOUT`] at a time so Ctrl-C is seen.
+/// at most [`READ_TIMEOUT`] at a time so a stop is seen, and nothing after
+/// [`PAUSE`] of silence, so the outputs are written out while the link is
+/// quiet.
 pub struct PortSource {
     name: String,
     port: Box<dyn serialport::SerialPort>,
@@ -128,7 +134,7 @@ pub struct PortSource {
 }
 
 impl PortSource {
-    /// Open `device` and end the run on Ctrl-C.
+    /// Open `device` and end the run on Ctrl-C, SIGTERM or SIGHUP.
     pub fn open(device: &str, baud: u32) -> Result<PortSource, Failure> {
         let port = open(device, baud, READ_TIMEOUT)?;
         let stop = Arc::new(AtomicBool::new(false));
@@ -136,7 +142,7 @@ impl PortSource {
         // Only one handler per process: a second `set_handler` cannot happen here.
         ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst)).map_err(|error| {
             Failure::Io {
-                context: "cannot catch Ctrl-C".to_owned(),
+                context: "cannot catch Ctrl-C, SIGTERM and SIGHUP".to_owned(),
                 error: io::Error::other(error),
             }
         })?;
@@ -151,8 +157,9 @@ impl PortSource {
 
 impl crate::input::ByteSource for PortSource {
     fn fill(&mut self, buf: &mut [u8]) -> Result<usize, Failure> {
+        let start = Instant::now();
         loop {
-            if self.stop.load(Ordering::SeqCst) {
+            if self.stop.load(Ordering::SeqCst) || start.elapsed() >= PAUSE {
                 return Ok(0);
             }
             match self.port.read(buf) {
@@ -176,6 +183,10 @@ impl crate::input::ByteSource for PortSource {
 
     fn may_wait(&self) -> bool {
         true
+    }
+
+    fn ended(&self) -> bool {
+        self.stop.load(Ordering::SeqCst)
     }
 }
 
