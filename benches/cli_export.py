@@ -71,8 +71,8 @@ def main():
         formats = [
             ("jsonl (stdout)", [binary, "decode", "omnitiles", "--from", "tile", big]),
             ("jsonl, one pass", [binary, "decode", "omnitiles", "--from", "tile", "--allow-noise", big]),
-            ("csv -o DIR", [binary, "decode", "omnitiles", "--from", "tile", "--format", "csv", "-o", csv_dir, big]),
-            ("mcap -o FILE", [binary, "decode", "omnitiles", "--from", "tile", "--format", "mcap", "-o", mcap_file, big]),
+            ("csv -o DIR", [binary, "decode", "omnitiles", "--from", "tile", "--format", "csv", "-o", csv_dir, "--force", big]),
+            ("mcap -o FILE", [binary, "decode", "omnitiles", "--from", "tile", "--format", "mcap", "-o", mcap_file, "--force", big]),
         ]
         best = {name: (float("inf"), 0.0) for name, _ in formats}
         # Interleaved, so a busy moment of the machine hits every format alike.

@@ -424,3 +424,74 @@ fn refused_spi_buffers_record_nothing() {
     assert!(out.stderr.contains("--layout spi45"), "{}", out.stderr);
     assert!(mcap_messages(&std::fs::read(&path).unwrap()).is_empty());
 }
+
+#[test]
+fn an_earlier_recording_is_not_written_over_without_force() {
+    let dir = scratch("export-force");
+    let input = data_arg("ble_telemetry.bin");
+    let mcap = dir.join("tile.mcap");
+    let mcap = mcap.to_str().unwrap();
+    let args = [
+        "decode",
+        "omnitiles",
+        "--format",
+        "mcap",
+        "-o",
+        mcap,
+        &input,
+    ];
+    assert_eq!(run(&args, b"").code, 0);
+    let first = std::fs::read(mcap).unwrap();
+    let again = run(&args, b"");
+    assert_eq!(again.code, 2);
+    assert!(
+        again.stderr.starts_with(&format!(
+            "error: {mcap} exists: robowire does not write over an earlier recording; \
+             name another or add --force\n"
+        )),
+        "a usage error: {}",
+        again.stderr
+    );
+    assert_eq!(std::fs::read(mcap).unwrap(), first, "the file is untouched");
+    assert_eq!(run(&[&args[..], &["--force"]].concat(), b"").code, 0);
+    // A CSV directory that holds files, and a --save capture's index.
+    let tables = dir.join("tables");
+    let tables = tables.to_str().unwrap();
+    let csv = [
+        "decode",
+        "omnitiles",
+        "--format",
+        "csv",
+        "-o",
+        tables,
+        &input,
+    ];
+    assert_eq!(run(&csv, b"").code, 0);
+    let again = run(&csv, b"");
+    assert_eq!(again.code, 2);
+    assert!(
+        again.stderr.contains("tables is not empty"),
+        "{}",
+        again.stderr
+    );
+    let save = dir.join("capture.bin");
+    std::fs::write(dir.join("capture.bin.times"), b"").unwrap();
+    let saving = [
+        "decode",
+        "omnitiles",
+        "--timestamps",
+        "--save",
+        save.to_str().unwrap(),
+        &input,
+    ];
+    let refused = run(&saving, b"");
+    assert_eq!(refused.code, 2);
+    assert!(refused.stderr.contains("capture.bin.times exists"));
+    assert!(
+        !save.exists(),
+        "nothing is written when one output is refused"
+    );
+    // A device is written as always.
+    let null = ["decode", "omnitiles", "-o", "/dev/null", &input];
+    assert_eq!(run(&null, b"").code, 0);
+}

@@ -37,6 +37,47 @@ pub struct FormatArgs {
     /// Where the output goes: a file (jsonl, mcap) or a directory (csv).
     #[arg(short = 'o', long = "output", value_name = "PATH", display_order = 12)]
     pub output: Option<PathBuf>,
+    /// Overwrite the -o and --save files (or fill a non-empty -o DIR) if
+    /// they exist; without it an existing one is refused before anything is
+    /// read.
+    #[arg(long, display_order = 13)]
+    pub force: bool,
+}
+
+impl FormatArgs {
+    /// Refuse, unless `--force`, to write over a file that exists: the
+    /// output (a non-empty directory for CSV) and a `--save` capture with
+    /// its index. Devices and pipes (`/dev/null`) are written as always.
+    fn refuse_overwrite(&self, save: Option<&Path>) -> Result<(), Failure> {
+        if self.force {
+            return Ok(());
+        }
+        let save_files = save
+            .into_iter()
+            .flat_map(|path| [path.to_owned(), clock::index_path(path)]);
+        for path in self.output.iter().cloned().chain(save_files) {
+            let exists = match std::fs::metadata(&path) {
+                Ok(meta) if meta.is_dir() => {
+                    std::fs::read_dir(&path).is_ok_and(|mut entries| entries.next().is_some())
+                }
+                Ok(meta) => meta.is_file(),
+                Err(_) => false,
+            };
+            if exists {
+                let what = if path.is_dir() {
+                    "is not empty"
+                } else {
+                    "exists"
+                };
+                return Err(Failure::Usage(format!(
+                    "{} {what}: robowire does not write over an earlier recording; name \
+                     another or add --force",
+                    path.display()
+                )));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// What `robowire plot` asks of a decode (nothing without `cli-plot`).
@@ -135,6 +176,7 @@ impl Recorder {
         plot: Option<PlotRequest>,
     ) -> Result<Option<Recorder>, Failure> {
         let (live, format) = (&common.live, &common.format);
+        format.refuse_overwrite(live.save.as_deref())?;
         let clock = if live.port.is_some() {
             Some(Clock::live())
         } else if live.timestamps {
