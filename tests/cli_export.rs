@@ -495,3 +495,47 @@ fn an_earlier_recording_is_not_written_over_without_force() {
     let null = ["decode", "omnitiles", "-o", "/dev/null", &input];
     assert_eq!(run(&null, b"").code, 0);
 }
+
+/// The compression of every chunk of an MCAP file (`""` for none).
+fn chunk_compressions(bytes: &[u8]) -> Vec<String> {
+    mcap::read::LinearReader::new(bytes)
+        .unwrap()
+        .filter_map(|record| match record.unwrap() {
+            mcap::records::Record::Chunk { header, .. } => Some(header.compression),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn mcap_chunks_are_zstd_unless_asked_otherwise() {
+    let dir = scratch("export-compression");
+    let input = data_arg("ble_telemetry.bin");
+    let mut recorded = Vec::new();
+    for (asked, written) in [(None, "zstd"), (Some("lz4"), "lz4"), (Some("none"), "")] {
+        let path = dir.join(format!("{written}.mcap"));
+        let mut args = vec!["decode", "omnitiles", "--format", "mcap", "-o"];
+        args.extend([path.to_str().unwrap(), &input]);
+        if let Some(asked) = asked {
+            args.extend(["--compression", asked]);
+        }
+        let out = run(&args, b"");
+        assert_eq!(out.code, 0, "{}", out.stderr);
+        let bytes = std::fs::read(&path).unwrap();
+        let chunks = chunk_compressions(&bytes);
+        assert!(!chunks.is_empty());
+        assert!(chunks.iter().all(|c| c == written), "{asked:?}: {chunks:?}");
+        recorded.push((bytes.len(), mcap_messages(&bytes)));
+    }
+    let (zstd, lz4, none) = (&recorded[0], &recorded[1], &recorded[2]);
+    assert_eq!(zstd.1, none.1, "the same messages, however compressed");
+    assert_eq!(lz4.1, none.1);
+    assert!(zstd.0 * 3 < none.0, "zstd {} B, none {} B", zstd.0, none.0);
+    // The other formats are text: --compression is refused there.
+    let out = run(
+        &["decode", "omnitiles", "--compression", "lz4", &input],
+        b"",
+    );
+    assert_eq!(out.code, 2);
+    assert!(out.stderr.contains("--compression is for --format mcap"));
+}

@@ -27,6 +27,28 @@ pub enum Format {
     Mcap,
 }
 
+/// How an MCAP recording's chunks are compressed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Compression {
+    /// Zstandard (the default: what Foxglove and the mcap CLI write).
+    Zstd,
+    /// LZ4: faster, larger files.
+    Lz4,
+    /// No compression.
+    None,
+}
+
+impl Compression {
+    /// The `mcap` crate's name for it.
+    pub fn for_mcap(self) -> Option<mcap::Compression> {
+        match self {
+            Compression::Zstd => Some(mcap::Compression::Zstd),
+            Compression::Lz4 => Some(mcap::Compression::Lz4),
+            Compression::None => None,
+        }
+    }
+}
+
 /// The options of a `decode` that choose its output.
 #[derive(Debug, Args)]
 pub struct FormatArgs {
@@ -37,10 +59,14 @@ pub struct FormatArgs {
     /// Where the output goes: a file (jsonl, mcap) or a directory (csv).
     #[arg(short = 'o', long = "output", value_name = "PATH", display_order = 12)]
     pub output: Option<PathBuf>,
+    /// How an MCAP recording's chunks are compressed: zstd (the default),
+    /// lz4 or none.
+    #[arg(long, value_enum, value_name = "CODEC", display_order = 13)]
+    pub compression: Option<Compression>,
     /// Overwrite the -o and --save files (or fill a non-empty -o DIR) if
     /// they exist; without it an existing one is refused before anything is
     /// read.
-    #[arg(long, display_order = 13)]
+    #[arg(long, display_order = 14)]
     pub force: bool,
 }
 
@@ -104,6 +130,12 @@ impl Sink {
     /// The sink `format` asks for; `None` for plain JSON lines on stdout
     /// when `plain` (nothing else to record either).
     fn open(format: &FormatArgs, plain: bool) -> Result<Option<Sink>, Failure> {
+        if format.compression.is_some() && format.format != Format::Mcap {
+            return Err(Failure::Usage(
+                "--compression is for --format mcap (the other formats are text)".to_owned(),
+            ));
+        }
+        let compression = format.compression.unwrap_or(Compression::Zstd).for_mcap();
         Ok(Some(match (format.format, format.output.as_deref()) {
             (Format::Jsonl, None) if plain => return Ok(None),
             (Format::Jsonl, None) => Sink::Jsonl(None),
@@ -122,6 +154,7 @@ impl Sink {
                 Sink::Mcap(Box::new(Recording::create(
                     path.display().to_string(),
                     file,
+                    compression,
                 )?))
             }
             (Format::Mcap, None) if io::stdout().is_terminal() => {
@@ -129,7 +162,11 @@ impl Sink {
             }
             (Format::Mcap, None) => {
                 let out = Box::new(BufWriter::with_capacity(256 * 1024, io::stdout()));
-                Sink::Mcap(Box::new(Recording::create("stdout".to_owned(), out)?))
+                Sink::Mcap(Box::new(Recording::create(
+                    "stdout".to_owned(),
+                    out,
+                    compression,
+                )?))
             }
         }))
     }
