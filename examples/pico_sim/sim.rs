@@ -53,7 +53,7 @@ pub fn captures() -> Result<Vec<Capture>, EncodeError> {
 }
 
 /// Milliseconds after which the session ends.
-const END_MS: u32 = 8000;
+pub const END_MS: u32 = 8000;
 
 /// xorshift64: small, seeded, good enough for sensor jitter and line noise.
 struct Rng(u64);

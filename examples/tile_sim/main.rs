@@ -20,10 +20,13 @@
 
 mod sim;
 
+#[path = "../common/live_pty.rs"]
+mod live_pty;
 #[path = "../common/sim_args.rs"]
 mod sim_args;
 
 use std::process::ExitCode;
+use std::time::Duration;
 
 const USAGE: &str = "\
 Usage: cargo run --example tile_sim -- OUT_DIR
@@ -36,45 +39,21 @@ only on the seeds, so it is byte-identical on every run. --pty streams the
 BLE telemetry live on a pseudo-terminal (it prints the device) until Ctrl-C.";
 
 fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
-    if std::env::args_os().nth(1).is_some_and(|a| a == "--pty") {
-        if let Some(extra) = std::env::args().nth(2) {
-            eprintln!("error: unexpected argument `{extra}`\n\n{USAGE}");
-            return Ok(ExitCode::from(2));
+    match live_pty::asked(USAGE) {
+        Some(Ok(())) => {
+            let mut stream = sim::LiveTelemetry::new();
+            return live_pty::serve(
+                "tile",
+                "53-byte telemetry every 20 ms",
+                "omnitiles",
+                Duration::from_millis(20),
+                |bytes| Ok(stream.next_into(bytes)?),
+            );
         }
-        return live();
+        Some(Err(status)) => return Ok(status),
+        None => {}
     }
     sim_args::write_captures(USAGE, || {
         sim::captures().map(|captures| captures.into_iter().map(|c| (c.name, c.bytes)).collect())
     })
-}
-
-/// A live tile on a pseudo-terminal: BLE telemetry every 20 ms until Ctrl-C.
-#[cfg(unix)]
-fn live() -> Result<ExitCode, Box<dyn std::error::Error>> {
-    use serialport::{ClearBuffer, SerialPort, TTYPort};
-    use std::io::Write;
-    use std::time::Duration;
-
-    let (mut tile, host) = TTYPort::pair()?;
-    let device = host.name().ok_or("the pseudo-terminal has no name")?;
-    println!("tile: 53-byte telemetry every 20 ms on {device} (Ctrl-C stops)");
-    println!("tile: robowire decode omnitiles --port {device}");
-    let mut stream = sim::LiveTelemetry::new();
-    let mut bytes = Vec::new();
-    loop {
-        // This end keeps the host's side open, so what nobody reads would
-        // pile up and arrive all at once later: drop it, as a UART would.
-        if host.bytes_to_read()? > 512 {
-            host.clear(ClearBuffer::Input)?;
-        }
-        bytes.clear();
-        stream.next_into(&mut bytes)?;
-        tile.write_all(&bytes)?;
-        std::thread::sleep(Duration::from_millis(20));
-    }
-}
-
-#[cfg(not(unix))]
-fn live() -> Result<ExitCode, Box<dyn std::error::Error>> {
-    Err("--pty needs a Unix pseudo-terminal".into())
 }
