@@ -137,9 +137,10 @@ fn wait_for_size(path: &Path, len: u64) {
     }
 }
 
-fn interrupt(child: &Child) {
+/// Send `child` the signal `name` (`INT` is Ctrl-C).
+fn signal(child: &Child, name: &str) {
     let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
+        .args([&format!("-{name}"), &child.id().to_string()])
         .status()
         .unwrap();
     assert!(status.success());
@@ -179,7 +180,7 @@ fn live_decode(protocol: &str, bytes: &[u8], baud: u32, name: &str) {
     ]);
     send_at(&mut master, bytes, baud);
     wait_for_size(&saved, bytes.len() as u64);
-    interrupt(&running.child);
+    signal(&running.child, "INT");
     let (code, stdout, stderr) = finish(running);
     assert_eq!(code, Some(0), "{stderr}");
     let (expected, summary) = from_file(protocol, bytes, &dir);
@@ -233,12 +234,12 @@ fn a_pico_decodes_live_at_115200_baud() {
 }
 
 /// A live MCAP recording of the tile's capture with `--save`, stopped with
-/// `kill -SIGNAL` after `linger` once the tool has read every byte: the exit
+/// `kill -NAME` after `linger` once the tool has read every byte: the exit
 /// status, the recording's and the saved capture's bytes, and the lines a
 /// decode of the capture from a file prints.
-fn record_and_stop(signal: &str, linger: Duration) -> (Option<i32>, Vec<u8>, Vec<u8>, Vec<Value>) {
+fn record_and_stop(name: &str, linger: Duration) -> (Option<i32>, Vec<u8>, Vec<u8>, Vec<Value>) {
     let _one = serial();
-    let dir = scratch(&format!("live-stop-{signal}"));
+    let dir = scratch(&format!("live-stop-{name}"));
     let (recording, saved) = (dir.join("tile.mcap"), dir.join("tile.bin"));
     let bytes = tile_capture();
     let (mut master, slave) = pty_pair();
@@ -261,11 +262,7 @@ fn record_and_stop(signal: &str, linger: Duration) -> (Option<i32>, Vec<u8>, Vec
     send_at(&mut master, &bytes, 1_000_000);
     wait_for_size(&saved, bytes.len() as u64);
     std::thread::sleep(linger);
-    let status = Command::new("kill")
-        .args([&format!("-{signal}"), &running.child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
+    signal(&running.child, name);
     let (code, _, stderr) = finish(running);
     if code.is_some() {
         assert!(stderr.starts_with("robowire: "), "the summary: {stderr}");

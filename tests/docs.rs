@@ -387,11 +387,7 @@ mod cli_claims {
 
     /// `robowire ARGS` from the crate root (the docs' paths are relative to it).
     fn robowire(args: &str) -> Output {
-        Command::new(env!("CARGO_BIN_EXE_robowire"))
-            .args(args.split_whitespace())
-            .current_dir(root())
-            .output()
-            .unwrap()
+        robowire_with(args, "")
     }
 
     /// Every `` `decode …` (N [false ]frame[s], exit status S) `` in the text

@@ -259,6 +259,9 @@ impl<'o> Printer<'o> {
     /// rejections are printed with `--errors`.
     pub fn new(out: &'o mut Output, common: &DecodeCommon) -> Result<Self, Failure> {
         let plot = out.plot.take();
+        common
+            .format
+            .refuse_overwrite(common.live.save.as_deref())?;
         if !out.judging {
             out.recorder = Recorder::new(common, plot)?;
         }

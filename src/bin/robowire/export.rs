@@ -74,7 +74,9 @@ impl FormatArgs {
     /// Refuse, unless `--force`, to write over a file that exists: the
     /// output (a non-empty directory for CSV) and a `--save` capture with
     /// its index. Devices and pipes (`/dev/null`) are written as always.
-    fn refuse_overwrite(&self, save: Option<&Path>) -> Result<(), Failure> {
+    /// Checked before the input is read, so a file judged whole is not
+    /// decoded first.
+    pub fn refuse_overwrite(&self, save: Option<&Path>) -> Result<(), Failure> {
         if self.force {
             return Ok(());
         }
@@ -82,19 +84,14 @@ impl FormatArgs {
             .into_iter()
             .flat_map(|path| [path.to_owned(), clock::index_path(path)]);
         for path in self.output.iter().cloned().chain(save_files) {
-            let exists = match std::fs::metadata(&path) {
-                Ok(meta) if meta.is_dir() => {
-                    std::fs::read_dir(&path).is_ok_and(|mut entries| entries.next().is_some())
-                }
-                Ok(meta) => meta.is_file(),
-                Err(_) => false,
+            let taken = match std::fs::metadata(&path) {
+                Ok(meta) if meta.is_dir() => std::fs::read_dir(&path)
+                    .is_ok_and(|mut entries| entries.next().is_some())
+                    .then_some("is not empty"),
+                Ok(meta) => meta.is_file().then_some("exists"),
+                Err(_) => None,
             };
-            if exists {
-                let what = if path.is_dir() {
-                    "is not empty"
-                } else {
-                    "exists"
-                };
+            if let Some(what) = taken {
                 return Err(Failure::Usage(format!(
                     "{} {what}: robowire does not write over an earlier recording; name \
                      another or add --force",
@@ -213,7 +210,6 @@ impl Recorder {
         plot: Option<PlotRequest>,
     ) -> Result<Option<Recorder>, Failure> {
         let (live, format) = (&common.live, &common.format);
-        format.refuse_overwrite(live.save.as_deref())?;
         let clock = if live.port.is_some() {
             Some(Clock::live())
         } else if live.timestamps {
