@@ -125,6 +125,7 @@ mod serde_support;
 pub mod side;
 pub mod stream;
 pub mod telemetrix;
+pub mod units;
 
 pub use encode::{Encode, EncodeError, FrameBuf};
 pub use stream::{

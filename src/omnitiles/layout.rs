@@ -46,6 +46,9 @@ impl Layout {
         Layout::Ble53,
     ];
 
+    /// Every layout's [`name`](Self::name), in the order of [`ALL`](Self::ALL).
+    pub const NAMES: [&'static str; 5] = ["pos7", "uwb15", "uwbtof17", "spi45", "ble53"];
+
     /// The frame's total length, start byte and checksum included.
     pub const fn frame_len(self) -> usize {
         match self {
@@ -71,13 +74,7 @@ impl Layout {
 
     /// The short name used by the command-line tool and in JSON output.
     pub const fn name(self) -> &'static str {
-        match self {
-            Layout::Pos7 => "pos7",
-            Layout::Uwb15 => "uwb15",
-            Layout::UwbTof17 => "uwbtof17",
-            Layout::Spi45 => "spi45",
-            Layout::Ble53 => "ble53",
-        }
+        Layout::NAMES[self as usize]
     }
 
     /// The layout with this [`name`](Self::name).

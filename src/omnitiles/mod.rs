@@ -142,6 +142,7 @@
 mod command;
 mod datagram;
 mod error;
+mod field_info;
 mod firmware;
 mod framing;
 mod layout;
@@ -160,6 +161,7 @@ pub use datagram::{
     HostDatagramDecoder,
 };
 pub use error::{Error, UnknownName};
+pub use field_info::FIELD_INFO;
 pub use firmware::{FirmwareEvent, FirmwareFeed, FirmwareParser};
 pub use framing::{Both, Device, Framing, Host, Side, TelemetrySide};
 pub use layout::{Layout, Layouts};

@@ -126,6 +126,7 @@ mod blocks;
 mod envelope;
 mod error;
 mod features;
+mod field_info;
 pub mod framing;
 mod pair;
 mod quirk;
@@ -143,6 +144,7 @@ pub use features::{
     Barcode, Element, Elements, FeatureIter, Features, FeaturesBuf, Intersection, IntersectionLine,
     Section, Sections, Vector, FTYPE_BARCODE, FTYPE_INTERSECTION, FTYPE_VECTOR, INTERSECTION_SLOTS,
 };
+pub use field_info::FIELD_INFO;
 pub use framing::{Both, Device, Framing, Host, Side};
 
 pub use pair::{PairError, ProgSwitch, Query};

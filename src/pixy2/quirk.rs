@@ -33,11 +33,12 @@ impl Quirk {
     /// Every quirk.
     pub const ALL: [Quirk; 1] = [Quirk::SigmapZero];
 
+    /// Every quirk's [`name`](Self::name), in the order of [`ALL`](Self::ALL).
+    pub const NAMES: [&'static str; 1] = ["sigmap_zero"];
+
     /// The name the JSON-lines schema writes (snake case).
     pub const fn name(self) -> &'static str {
-        match self {
-            Quirk::SigmapZero => "sigmap_zero",
-        }
+        Quirk::NAMES[self as usize]
     }
 }
 

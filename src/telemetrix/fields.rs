@@ -21,8 +21,16 @@ use super::table::sensor_readings;
 /// One field value.
 #[derive(Clone, Copy)]
 pub(crate) enum V<'a> {
-    U(u64),
-    I(i64),
+    /// An unsigned integer and its width on the wire.
+    U(
+        u64,
+        #[cfg_attr(not(feature = "serde"), allow(dead_code))] Width,
+    ),
+    /// A signed integer and its width on the wire.
+    I(
+        i64,
+        #[cfg_attr(not(feature = "serde"), allow(dead_code))] Width,
+    ),
     Bool(bool),
     Str(&'a str),
     F32(f32),
@@ -36,6 +44,31 @@ pub(crate) enum V<'a> {
     Obj(&'a dyn Visit),
     Objs(&'a dyn VisitSeq),
 }
+
+/// An integer's width on the wire: `serde` sees the Rust type it has
+/// (`u8`, `i16`, …), so a schema can give the wire's range.
+#[derive(Clone, Copy)]
+pub(crate) enum Width {
+    W8,
+    W16,
+    W32,
+}
+
+/// An integer type a field may have.
+pub(crate) trait Wide: Copy {
+    /// Its width.
+    const WIDTH: Width;
+}
+
+macro_rules! wide {
+    ($($ty:ty => $width:ident),*) => {$(
+        impl Wide for $ty {
+            const WIDTH: Width = Width::$width;
+        }
+    )*};
+}
+
+wide!(u8 => W8, u16 => W16, u32 => W32, i8 => W8, i16 => W16, i32 => W32);
 
 /// Something with named fields.
 pub(crate) trait Visit {
@@ -54,11 +87,11 @@ impl W<'_> {
     fn v(&mut self, key: &'static str, value: V<'_>) {
         (self.0)(key, value);
     }
-    fn u(&mut self, key: &'static str, value: impl Into<u64>) {
-        self.v(key, V::U(value.into()));
+    fn u<T: Into<u64> + Wide>(&mut self, key: &'static str, value: T) {
+        self.v(key, V::U(value.into(), T::WIDTH));
     }
-    fn i(&mut self, key: &'static str, value: impl Into<i64>) {
-        self.v(key, V::I(value.into()));
+    fn i<T: Into<i64> + Wide>(&mut self, key: &'static str, value: T) {
+        self.v(key, V::I(value.into(), T::WIDTH));
     }
     fn flag(&mut self, key: &'static str, value: bool) {
         self.v(key, V::Bool(value));
@@ -208,7 +241,14 @@ fn with_quirk(w: &mut W<'_>, frame: &[u8], quirk: Option<Quirk>, fields: &dyn Fn
     };
     match replaced {
         Some((key, byte)) => fields(&mut W(&mut |k, v| {
-            (w.0)(k, if k == key { V::U(byte.into()) } else { v });
+            (w.0)(
+                k,
+                if k == key {
+                    V::U(byte.into(), Width::W8)
+                } else {
+                    v
+                },
+            );
         })),
         None => fields(w),
     }
@@ -576,8 +616,8 @@ fn write_value(f: &mut fmt::Formatter<'_>, value: V<'_>) -> fmt::Result {
         f.write_str("]")
     }
     match value {
-        V::U(v) => write!(f, "{v}"),
-        V::I(v) => write!(f, "{v}"),
+        V::U(v, _) => write!(f, "{v}"),
+        V::I(v, _) => write!(f, "{v}"),
         V::Bool(v) => write!(f, "{v}"),
         V::Str(v) => f.write_str(v),
         V::F32(v) => write!(f, "{v}"),

@@ -280,6 +280,7 @@ mod command;
 mod dialect;
 mod error;
 mod fast;
+mod field_info;
 mod fields;
 mod framing;
 mod kind;
@@ -300,6 +301,7 @@ pub use command::{
 };
 pub use dialect::Dialect;
 pub use error::Error;
+pub use field_info::FIELD_INFO;
 pub use framing::{Both, CaptureContext, Device, Framing, Host, Side};
 pub use list::{List, Payload};
 pub use module::{

@@ -18,7 +18,7 @@ use super::command::{
 };
 use super::dialect::Dialect;
 use super::error::Error;
-use super::fields::{Visit, V, W};
+use super::fields::{Visit, Width, V, W};
 use super::kind::{bind_hook, piece};
 use super::list::List;
 use super::module::{
@@ -81,8 +81,14 @@ impl fmt::Display for Latin1<'_> {
 impl Serialize for Field<'_> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         match self.0 {
-            V::U(v) => serializer.serialize_u64(v),
-            V::I(v) => serializer.serialize_i64(v),
+            // The Rust type of the wire's field, for a schema (the JSON
+            // text is the same).
+            V::U(v, Width::W8) => serializer.serialize_u8(v as u8),
+            V::U(v, Width::W16) => serializer.serialize_u16(v as u16),
+            V::U(v, Width::W32) => serializer.serialize_u32(v as u32),
+            V::I(v, Width::W8) => serializer.serialize_i8(v as i8),
+            V::I(v, Width::W16) => serializer.serialize_i16(v as i16),
+            V::I(v, Width::W32) => serializer.serialize_i32(v as i32),
             V::Bool(v) => serializer.serialize_bool(v),
             V::Str(v) => serializer.serialize_str(v),
             V::F32(v) => serialize_f32(v, serializer),

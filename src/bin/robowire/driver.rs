@@ -10,6 +10,7 @@ use crate::suspicion;
 use crate::Failure;
 use clap::Args;
 use robowire::stream::{FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats, StreamDecoder};
+use robowire::units::FieldTable;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 use serde_json::Value;
@@ -25,6 +26,9 @@ use std::path::PathBuf;
 pub trait Schema {
     /// What one JSON line (that is not a diagnostic event) deserializes into.
     type Line: DeserializeOwned;
+
+    /// What each field means (units, descriptions), for schemas and labels.
+    const FIELDS: &'static FieldTable;
 
     /// Append the frame of `line` to `frame`; the error names the problem.
     fn encode(&self, line: &Self::Line, frame: &mut Vec<u8>) -> Result<(), String>;
@@ -257,13 +261,18 @@ pub struct Printer<'o> {
 impl<'o> Printer<'o> {
     /// A printer writing to `out` in the format `common` asks for;
     /// rejections are printed with `--errors`.
-    pub fn new(out: &'o mut Output, common: &DecodeCommon) -> Result<Self, Failure> {
+    /// `fields` describes the protocol's fields to the recording's schemas.
+    pub fn new(
+        out: &'o mut Output,
+        common: &DecodeCommon,
+        fields: &'static FieldTable,
+    ) -> Result<Self, Failure> {
         let plot = out.plot.take();
         common
             .format
             .refuse_overwrite(common.live.save.as_deref())?;
         if !out.judging {
-            out.recorder = Recorder::new(common, plot)?;
+            out.recorder = Recorder::new(common, plot, fields)?;
         }
         Ok(Printer {
             out,

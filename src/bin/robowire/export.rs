@@ -7,10 +7,12 @@ use crate::clock::{self, Clock, Save};
 use crate::csv::Tables;
 use crate::driver::DecodeCommon;
 use crate::flatten::Row;
+use crate::json_schema::channel_schema;
 use crate::mcap::Recording;
 use crate::Failure;
 use clap::{Args, ValueEnum};
 use robowire::stream::{OwnedFrame, Rejected};
+use robowire::units::FieldTable;
 use serde::Serialize;
 use std::fs::File;
 use std::io::{self, BufWriter, IsTerminal, Write};
@@ -200,6 +202,8 @@ pub struct Recorder {
     text: Vec<u8>,
     /// A failure to save bytes, reported with the next event.
     pending: Option<Failure>,
+    /// What the protocol's fields mean.
+    fields: &'static FieldTable,
 }
 
 impl Recorder {
@@ -208,6 +212,7 @@ impl Recorder {
     pub fn new(
         common: &DecodeCommon,
         plot: Option<PlotRequest>,
+        fields: &'static FieldTable,
     ) -> Result<Option<Recorder>, Failure> {
         let (live, format) = (&common.live, &common.format);
         let clock = if live.port.is_some() {
@@ -257,6 +262,7 @@ impl Recorder {
             row: Row::default(),
             text: Vec::with_capacity(256),
             pending: None,
+            fields,
         }))
     }
 
@@ -370,7 +376,9 @@ impl Recorder {
                 };
                 // The time as printed (microseconds), in nanoseconds.
                 let nanoseconds = seconds.map_or(index, |t| (t * 1e6).round() as u64 * 1000);
-                recording.write(kind, text, nanoseconds)
+                let fields = self.fields;
+                let schema = || channel_schema(event, kind, fields, seconds.is_some());
+                recording.write(kind, text, nanoseconds, schema)
             }
             Sink::Csv(_) => unreachable!("CSV rows are written above"),
             #[cfg(feature = "cli-plot")]

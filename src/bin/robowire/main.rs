@@ -13,6 +13,7 @@ mod driver;
 mod export;
 mod flatten;
 mod input;
+mod json_schema;
 mod mcap;
 mod omnitiles;
 mod pixy2;

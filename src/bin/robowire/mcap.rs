@@ -1,22 +1,18 @@
 //! `--format mcap`: an MCAP recording (the ROS 2 and Foxglove file format)
 //! with one channel per message type (topic `/TYPE`, rejections on
 //! `/rejected`), JSON message encoding, each message exactly the JSON line
-//! the default format prints. Each channel's JSON Schema is derived from the
-//! serde form of the first frame of its type: every field it has, with the
-//! JSON type it has there. Any leaf may also be `null` (a reading the device
-//! marks invalid) and a number may be a string (the library's marker for a
-//! value out of range or not finite, as `"out_of_range"` or `"inf"`); frames
-//! of the same type with other fields (another layout) still validate, as
-//! the schema does not forbid members it does not list. Log and publish times are the receive time in
-//! nanoseconds when there is one (`--port`, `--timestamps`), otherwise the
-//! frame's index. A live run closes a chunk at least once a second, so a
-//! recording cut short (SIGKILL, a power loss) is readable up to its last
-//! second from its start, without the summary.
+//! the default format prints. Each channel's JSON Schema comes from
+//! [`json_schema`](crate::json_schema): exact types, units and descriptions
+//! from the protocol's field table. Log and publish times are the receive
+//! time in nanoseconds when there is one (`--port`, `--timestamps`),
+//! otherwise the frame's index. A live run closes a chunk at least once a
+//! second, so a recording cut short (SIGKILL, a power loss) is readable up to
+//! its last second from its start, without the summary.
 
 use crate::Failure;
 use mcap::records::MessageHeader;
 use mcap::write::{NoSeek, WriteOptions, Writer};
-use serde_json::{json, Map, Value};
+use serde_json::Value;
 use std::collections::{BTreeMap, HashMap};
 use std::io::{self, Write};
 use std::time::{Duration, Instant};
@@ -66,18 +62,23 @@ impl Recording {
     }
 
     /// Record `json` (one JSON object: a frame, or a rejection when `kind`
-    /// is `rejected`) at `nanoseconds`.
-    pub fn write(&mut self, kind: &str, json: &[u8], nanoseconds: u64) -> Result<(), Failure> {
+    /// is `rejected`) at `nanoseconds`; `schema` gives the JSON Schema of
+    /// its channel when it is the first on it.
+    pub fn write(
+        &mut self,
+        kind: &str,
+        json: &[u8],
+        nanoseconds: u64,
+        schema: impl FnOnce() -> Result<Value, String>,
+    ) -> Result<(), Failure> {
         let Some(writer) = self.writer.as_mut() else {
             return Ok(());
         };
         let (channel, sequence) = match self.channels.get_mut(kind) {
             Some(entry) => entry,
             None => {
-                let value: Value = serde_json::from_slice(json)
-                    .map_err(|e| Failure::Reported(format!("cannot read back a frame: {e}")))?;
-                let mut schema = schema_of(&value);
-                schema["title"] = Value::from(kind);
+                let schema = schema()
+                    .map_err(|e| Failure::Reported(format!("cannot describe a frame: {e}")))?;
                 let schema = serde_json::to_vec(&schema).expect("a JSON value serializes");
                 let schema_id = writer
                     .add_schema(kind, "jsonschema", &schema)
@@ -129,28 +130,6 @@ impl Recording {
             .into_inner()
             .flush()
             .map_err(|error| io_failure(&self.name, error))
-    }
-}
-
-/// A JSON Schema for values shaped like `value`.
-pub fn schema_of(value: &Value) -> Value {
-    match value {
-        Value::Object(members) => {
-            let properties: Map<String, Value> = members
-                .iter()
-                .map(|(name, member)| (name.clone(), schema_of(member)))
-                .collect();
-            json!({"type": "object", "properties": properties})
-        }
-        Value::Array(items) => match items.first() {
-            Some(first) => json!({"type": "array", "items": schema_of(first)}),
-            None => json!({"type": "array"}),
-        },
-        Value::Null => json!({}),
-        Value::Bool(_) => json!({"type": ["boolean", "null"]}),
-        Value::Number(n) if n.is_f64() => json!({"type": ["number", "string", "null"]}),
-        Value::Number(_) => json!({"type": ["integer", "string", "null"]}),
-        Value::String(_) => json!({"type": ["string", "null"]}),
     }
 }
 

@@ -11,6 +11,7 @@ use robowire::omnitiles::{
     self, Both, Command, DatagramDecoder, Device, FirmwareParser, Framing, Host, Layout, Layouts,
     Message,
 };
+use robowire::units::FieldTable;
 use robowire::{FrameBuf, StreamDecoder};
 use serde::Serialize;
 
@@ -170,14 +171,14 @@ where
         if hold {
             out.hold_for_spi();
         }
-        let mut printer = Printer::new(out, &args.common)?;
+        let mut printer = Printer::new(out, &args.common, <OmniTiles as Schema>::FIELDS)?;
         return decode_datagrams(DatagramDecoder::new(framing), input, &mut printer);
     }
     let mut source = args.common.source()?;
     if hold {
         out.hold_for_spi();
     }
-    let mut printer = Printer::new(out, &args.common)?;
+    let mut printer = Printer::new(out, &args.common, <OmniTiles as Schema>::FIELDS)?;
     // Every side's buffer is the same size.
     let decoder = StreamDecoder::<_, { omnitiles::BOTH_BUFFER }>::new(framing);
     let chunk = args.common.chunk as usize;
@@ -188,7 +189,7 @@ where
 /// `--chunk` bytes at a time (its events never depend on the chunking).
 fn run_firmware(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     let mut source = args.common.source()?;
-    let mut printer = Printer::new(out, &args.common)?;
+    let mut printer = Printer::new(out, &args.common, <OmniTiles as Schema>::FIELDS)?;
     let mut parser = FirmwareParser::new();
     let mut buf = vec![0u8; args.common.chunk as usize];
     loop {
@@ -304,6 +305,7 @@ pub struct OmniTiles;
 
 impl Schema for OmniTiles {
     type Line = Message;
+    const FIELDS: &'static FieldTable = &robowire::omnitiles::FIELD_INFO;
 
     fn encode(&self, line: &Message, frame: &mut Vec<u8>) -> Result<(), String> {
         let bytes = FrameBuf::<{ Message::MAX_LEN }>::encode(line).map_err(|e| e.to_string())?;

@@ -8,6 +8,7 @@ use clap::{Args, ValueEnum};
 use robowire::pixy2::{
     self, DeviceError, Envelope, Framing, MessageBuf, Request, Response, Side, MAX_FRAME_LEN,
 };
+use robowire::units::FieldTable;
 use robowire::Encode;
 
 /// The JSON schema, printed by `--help` after the options; the type and
@@ -122,7 +123,7 @@ pub struct EncodeArgs {
 /// Run `decode pixy2`.
 pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     let mut source = args.common.source()?;
-    let mut printer = Printer::new(out, &args.common)?;
+    let mut printer = Printer::new(out, &args.common, <Pixy2 as Schema>::FIELDS)?;
     let source = source.as_mut();
     let chunk = args.common.chunk as usize;
     let only = args.checksum_only;
@@ -161,6 +162,7 @@ pub struct Pixy2;
 
 impl Schema for Pixy2 {
     type Line = Envelope<MessageBuf>;
+    const FIELDS: &'static FieldTable = &robowire::pixy2::FIELD_INFO;
 
     fn encode(&self, line: &Self::Line, frame: &mut Vec<u8>) -> Result<(), String> {
         let mut out = [0u8; MAX_FRAME_LEN];

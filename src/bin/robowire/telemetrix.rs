@@ -13,6 +13,7 @@ use robowire::telemetrix::{
     Both, CaptureContext, Command, Device, Dialect, Framing, Host, MessageBuf, ModifyReporting,
     ModuleType, PinMode, Report, SensorType, Side, BOTH_BUFFER,
 };
+use robowire::units::FieldTable;
 
 /// `names` as a list ending in a full stop, wrapped at 86 columns, every
 /// line indented by `indent`.
@@ -203,7 +204,7 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
         ));
     }
     let mut source = args.common.source()?;
-    let mut printer = Printer::new(out, &args.common)?;
+    let mut printer = Printer::new(out, &args.common, <Telemetrix as Schema>::FIELDS)?;
     let chunk = args.common.chunk as usize;
     let source = source.as_mut();
     let (dialect, lenient) = (args.dialect, args.lenient);
@@ -274,6 +275,7 @@ pub struct Telemetrix {
 
 impl Schema for Telemetrix {
     type Line = serde_json::Value;
+    const FIELDS: &'static FieldTable = &robowire::telemetrix::FIELD_INFO;
 
     fn encode(&self, line: &serde_json::Value, frame: &mut Vec<u8>) -> Result<(), String> {
         let message = MessageBuf::deserialize_in(line, self.dialect).map_err(|e| e.to_string())?;
