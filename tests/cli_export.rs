@@ -97,6 +97,9 @@ fn csv_tables_hold_every_json_line() {
         for entry in std::fs::read_dir(&dir).unwrap() {
             let path = entry.unwrap().path();
             let stem = path.file_stem().unwrap().to_str().unwrap().to_owned();
+            if stem == "units" {
+                continue;
+            }
             let kind = match stem.rsplit_once('-') {
                 Some((kind, n)) if n.parse::<u32>().is_ok() => kind.to_owned(),
                 _ => stem,
@@ -132,6 +135,71 @@ fn csv_tables_hold_every_json_line() {
                 );
             }
         }
+    }
+}
+
+#[test]
+fn csv_units_name_every_column_of_every_table() {
+    for (protocol, capture, options) in CAPTURES {
+        let dir = scratch(&format!("export-csv-units-{capture}"));
+        let input = data_arg(capture);
+        let args = [
+            "decode",
+            protocol,
+            "--errors",
+            "--timestamps",
+            "--format",
+            "csv",
+            "-o",
+            dir.to_str().unwrap(),
+            &input,
+        ];
+        let out = run(&[&args[..], options].concat(), b"");
+        assert_eq!(out.code, 0, "{}", out.stderr);
+        let mut units: HashMap<String, Vec<(String, String)>> = HashMap::new();
+        let mut reader = csv::Reader::from_path(dir.join("units.csv")).unwrap();
+        assert_eq!(
+            reader.headers().unwrap(),
+            vec!["table", "column", "unit", "description"]
+        );
+        for record in reader.records() {
+            let record = record.unwrap();
+            units
+                .entry(record[0].to_owned())
+                .or_default()
+                .push((record[1].to_owned(), record[2].to_owned()));
+        }
+        let mut tables = 0;
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            let stem = path.file_stem().unwrap().to_str().unwrap().to_owned();
+            if stem == "units" {
+                continue;
+            }
+            tables += 1;
+            let mut reader = csv::Reader::from_path(&path).unwrap();
+            let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+            let described: Vec<&String> = units[&stem].iter().map(|(c, _)| c).collect();
+            assert_eq!(
+                described,
+                header.iter().collect::<Vec<_>>(),
+                "{capture} {stem}"
+            );
+        }
+        assert_eq!(units.len(), tables, "{capture}");
+        if capture == "ble_telemetry.bin" {
+            let text = std::fs::read_to_string(dir.join("units.csv")).unwrap();
+            assert!(text.contains("\ntelemetry,imu.az,m/s²,"), "{text}");
+            assert!(text.contains("\ntelemetry,uwb.3,mm,"), "{text}");
+        }
+        assert_eq!(
+            units
+                .values()
+                .flatten()
+                .filter(|(c, u)| c == "t" && u == "s")
+                .count(),
+            tables
+        );
     }
 }
 

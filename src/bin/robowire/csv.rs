@@ -2,10 +2,15 @@
 //! fields flattened (`imu.ax`, `uwb.0`), `null` an empty cell. A type whose
 //! frames come in more than one shape (telemetry of two layouts) gets a file
 //! per shape: `telemetry.csv`, `telemetry-2.csv`. Rejections (with
-//! `--errors`) go to `rejected-ERROR.csv`.
+//! `--errors`) go to `rejected-ERROR.csv`. `units.csv` beside them gives
+//! each table's columns with their unit and description (from the
+//! protocol's field table), one row per column: the tables themselves stay
+//! one header row and numbers, as PlotJuggler and pandas read them.
 
-use crate::flatten::Row;
+use crate::flatten::{csv_field as quote, Row};
+use crate::json_schema::field_info;
 use crate::Failure;
+use robowire::units::FieldTable;
 use std::collections::HashMap;
 use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};
@@ -28,11 +33,16 @@ pub struct Tables {
     kinds: HashMap<String, Vec<usize>>,
     /// The table the previous row went to (rows of one shape come in runs).
     last: Option<usize>,
+    /// What the protocol's fields mean.
+    fields: &'static FieldTable,
+    /// `units.csv`, once a table exists.
+    units: Option<BufWriter<File>>,
 }
 
 impl Tables {
-    /// Write tables into `dir`, creating it if needed.
-    pub fn create(dir: &Path) -> Result<Tables, Failure> {
+    /// Write tables into `dir`, creating it if needed; `fields` gives the
+    /// columns' units.
+    pub fn create(dir: &Path, fields: &'static FieldTable) -> Result<Tables, Failure> {
         fs::create_dir_all(dir).map_err(|error| Failure::Io {
             context: dir.display().to_string(),
             error,
@@ -42,6 +52,8 @@ impl Tables {
             tables: Vec::new(),
             kinds: HashMap::new(),
             last: None,
+            fields,
+            units: None,
         })
     }
 
@@ -78,6 +90,7 @@ impl Tables {
             .map(|file| BufWriter::with_capacity(64 * 1024, file))
             .map_err(|error| failure(&path, error))?;
         writeln!(file, "{}", row.names).map_err(|error| failure(&path, error))?;
+        self.describe(&path, &kind, row)?;
         self.tables.push(Table {
             kind: kind.clone(),
             names: row.names.clone(),
@@ -89,8 +102,47 @@ impl Tables {
         Ok(i)
     }
 
+    /// Add the columns of the new table at `path` (rows of `kind`, shaped
+    /// like `row`) to `units.csv`.
+    fn describe(&mut self, path: &Path, kind: &str, row: &Row) -> Result<(), Failure> {
+        let units_path = self.dir.join("units.csv");
+        let units = match &mut self.units {
+            Some(units) => units,
+            None => {
+                let mut file = File::create(&units_path)
+                    .map(BufWriter::new)
+                    .map_err(|error| failure(&units_path, error))?;
+                writeln!(file, "table,column,unit,description")
+                    .map_err(|error| failure(&units_path, error))?;
+                self.units.insert(file)
+            }
+        };
+        let table = path
+            .file_stem()
+            .map_or(String::new(), |s| s.to_string_lossy().into_owned());
+        for column in row.columns() {
+            let info = field_info(self.fields, kind, &column);
+            let unit = info.and_then(|i| i.unit).map_or("", |u| u.symbol());
+            let description = info.map_or("", |i| i.doc);
+            writeln!(
+                units,
+                "{},{},{},{}",
+                quote(&table),
+                quote(&column),
+                quote(unit),
+                quote(description)
+            )
+            .map_err(|error| failure(&units_path, error))?;
+        }
+        Ok(())
+    }
+
     /// Write out every table.
     pub fn flush(&mut self) -> Result<(), Failure> {
+        if let Some(units) = &mut self.units {
+            let path = self.dir.join("units.csv");
+            units.flush().map_err(|error| failure(&path, error))?;
+        }
         for table in &mut self.tables {
             table
                 .file

@@ -128,7 +128,11 @@ enum Sink {
 impl Sink {
     /// The sink `format` asks for; `None` for plain JSON lines on stdout
     /// when `plain` (nothing else to record either).
-    fn open(format: &FormatArgs, plain: bool) -> Result<Option<Sink>, Failure> {
+    fn open(
+        format: &FormatArgs,
+        plain: bool,
+        fields: &'static FieldTable,
+    ) -> Result<Option<Sink>, Failure> {
         if format.compression.is_some() && format.format != Format::Mcap {
             return Err(Failure::Usage(
                 "--compression is for --format mcap (the other formats are text)".to_owned(),
@@ -141,7 +145,7 @@ impl Sink {
             (Format::Jsonl, Some(path)) => {
                 Sink::Jsonl(Some((path.display().to_string(), create(path)?)))
             }
-            (Format::Csv, Some(dir)) => Sink::Csv(Tables::create(dir)?),
+            (Format::Csv, Some(dir)) => Sink::Csv(Tables::create(dir, fields)?),
             (Format::Csv, None) => {
                 return Err(Failure::Usage(
                     "--format csv writes one file per message type: name a directory with -o DIR"
@@ -245,7 +249,7 @@ impl Recorder {
                     "robowire plot draws a picture: leave out --format".to_owned(),
                 ))
             }
-            _ => Sink::open(format, plain)?,
+            _ => Sink::open(format, plain, fields)?,
         };
         let Some(sink) = sink else {
             return Ok(None);

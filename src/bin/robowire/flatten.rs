@@ -89,6 +89,26 @@ impl Row {
         }
     }
 
+    /// The column names, unquoted.
+    pub fn columns(&self) -> Vec<String> {
+        let mut columns = vec![String::new()];
+        let mut quoted = false;
+        let mut chars = self.names.chars().peekable();
+        while let Some(c) = chars.next() {
+            let column = columns.last_mut().expect("one column at least");
+            match c {
+                '"' if quoted && chars.peek() == Some(&'"') => {
+                    chars.next();
+                    column.push('"');
+                }
+                '"' => quoted = !quoted,
+                ',' if !quoted => columns.push(String::new()),
+                c => column.push(c),
+            }
+        }
+        columns
+    }
+
     /// The cell of the column `name`, as CSV text, if the row has it.
     #[cfg_attr(not(feature = "cli-plot"), allow(dead_code))]
     pub fn cell(&self, name: &str) -> Option<&str> {
@@ -127,6 +147,15 @@ impl Row {
                 }
             });
         }
+    }
+}
+
+/// `text` as a CSV field: quoted when it must be.
+pub fn csv_field(text: &str) -> std::borrow::Cow<'_, str> {
+    if needs_quotes(text) {
+        quoted(text).into()
+    } else {
+        text.into()
     }
 }
 

@@ -13,8 +13,19 @@ use robowire::units::{FieldInfo, FieldTable, STREAM_FIELDS};
 use serde::ser::{self, Impossible, Serialize};
 use serde_json::{json, Map, Value};
 
+/// The info of field `path` of a `kind` frame: the protocol's, the
+/// stream's (`offset`, `len`) or the tool's (`t`).
+pub fn field_info(fields: &FieldTable, kind: &str, path: &str) -> Option<&'static FieldInfo> {
+    if path == "t" {
+        return Some(&TIME);
+    }
+    fields
+        .get(kind, path)
+        .or_else(|| STREAM_FIELDS.get(kind, path))
+}
+
 /// The member the tool adds to a timed event.
-const TIME: FieldInfo =
+static TIME: FieldInfo =
     FieldInfo::new("Receive time of the frame's last byte, seconds since the start of the run.")
         .unit(robowire::units::Unit::Second);
 
@@ -82,9 +93,7 @@ impl Context<'_> {
         if self.rejected {
             return None;
         }
-        self.fields
-            .get(self.kind, path)
-            .or_else(|| STREAM_FIELDS.get(self.kind, path))
+        field_info(self.fields, self.kind, path)
     }
 
     fn schema(&self, shape: &Shape, path: &str) -> Value {
