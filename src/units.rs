@@ -220,6 +220,8 @@ impl FieldInfo {
 /// A protocol's [`FieldInfo`]s, each under its message type and path.
 #[derive(Debug, Clone, Copy)]
 pub struct FieldTable {
+    /// The protocol's name, as the tool's subcommands name it (`omnitiles`).
+    pub protocol: &'static str,
     /// `(message type, path, info)`: `*` as the type matches every message,
     /// `*` as a path segment every array index.
     pub entries: &'static [(&'static str, &'static str, FieldInfo)],
@@ -256,8 +258,10 @@ fn path_matches(pattern: &str, path: &str) -> bool {
     }
 }
 
-/// The members the stream adds to every frame's JSON line.
+/// The members the stream adds to every frame's JSON line (its `protocol`
+/// is empty: every protocol's frames have them).
 pub static STREAM_FIELDS: FieldTable = FieldTable {
+    protocol: "",
     entries: &[
         (
             "*",

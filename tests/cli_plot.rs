@@ -116,13 +116,153 @@ fn an_svg_names_the_fields_and_the_time_axis() {
     assert!(text.contains("<polyline"));
 }
 
+/// The text lines of an SVG plot (plotters writes each text on a line of its own).
+fn svg_texts(args: &[&str], name: &str) -> Vec<String> {
+    let dir = scratch(name);
+    let svg = dir.join("plot.svg");
+    let out = run(&[args, &["-o", svg.to_str().unwrap()]].concat(), b"");
+    assert_eq!(out.code, 0, "{args:?}: {}", out.stderr);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    text.lines().map(|l| l.trim().to_owned()).collect()
+}
+
+#[test]
+fn a_plot_has_a_title_a_panel_per_unit_and_units_on_its_axes() {
+    let input = data_arg("ble_telemetry.bin");
+    let lines = svg_texts(
+        &[
+            "plot",
+            "omnitiles",
+            &input,
+            "--timestamps",
+            "--fields",
+            "m1_pos,m2_pos,imu.az",
+            "--errors",
+        ],
+        "plot-units",
+    );
+    let has = |t: &str| lines.iter().any(|l| l == t);
+    assert!(
+        has("omnitiles: ble_telemetry.bin, 298 frames, 9 rejected, 0.00–1.38 s"),
+        "the title says protocol, source, frames and span"
+    );
+    assert!(has("ADC counts") && has("m/s²"), "one y axis per unit");
+    assert!(has("m1_pos (ADC counts)") && has("imu.az (m/s²)"));
+    assert!(has("rejected (9)"), "the legend counts the rejections");
+    assert!(has("2"), "coincident rejections are counted on their tick");
+    // One panel: both units on its axis.
+    let one = svg_texts(
+        &[
+            "plot",
+            "omnitiles",
+            &input,
+            "--fields",
+            "m1_pos,imu.az",
+            "--panels",
+            "one",
+        ],
+        "plot-one-panel",
+    );
+    assert!(one.iter().any(|l| l == "ADC counts, m/s²"), "{one:?}");
+}
+
+#[test]
+fn selectors_pick_a_message_type_and_an_entity_and_integers_tick_whole() {
+    let input = data_arg("telemetrix_reports.bin");
+    let lines = svg_texts(
+        &[
+            "plot",
+            "telemetrix",
+            &input,
+            "--fields",
+            "analog_report[pin=26].value,digital_report[pin=10].value",
+        ],
+        "plot-selectors",
+    );
+    let has = |t: &str| lines.iter().any(|l| l == t);
+    assert!(has("analog_report[pin=26].value (ADC counts)"));
+    assert!(has("digital_report[pin=10].value"));
+    // Tick labels are whole numbers: integer fields, a frame-index axis.
+    let numbers: Vec<&String> = lines.iter().filter(|l| l.parse::<f64>().is_ok()).collect();
+    assert!(numbers.len() > 10, "{numbers:?}");
+    assert!(numbers.iter().all(|n| !n.contains('.')), "{numbers:?}");
+    // The digital panel holds 0 and 1 only: its ticks are 0 and 1.
+    assert!(has("0") && has("1"));
+    // The analog series is pin 26 alone (1225..1800): pin 27's 2890 would
+    // lift the axis past 2800, as it does without the filter.
+    let top = |lines: &[String]| {
+        lines
+            .iter()
+            .filter_map(|l| l.parse::<i64>().ok())
+            .max()
+            .unwrap()
+    };
+    assert!(top(&lines) < 2000, "{lines:?}");
+    let both = svg_texts(
+        &[
+            "plot",
+            "telemetrix",
+            &input,
+            "--fields",
+            "analog_report.value",
+        ],
+        "plot-selectors-both",
+    );
+    let axis: Vec<i64> = both
+        .iter()
+        .filter_map(|l| l.parse().ok())
+        .filter(|&n| n >= 1000)
+        .collect();
+    assert!(axis.iter().any(|&n| n >= 2800), "{axis:?}");
+}
+
+#[test]
+fn errors_alone_plot_the_rejections_so_far() {
+    let input = data_arg("ble_telemetry.bin");
+    let lines = svg_texts(
+        &["plot", "omnitiles", &input, "--errors"],
+        "plot-errors-alone",
+    );
+    assert!(lines.iter().any(|l| l == "rejections so far"));
+    assert!(
+        lines.iter().any(|l| l == "9"),
+        "the count reaches 9: {lines:?}"
+    );
+}
+
 #[test]
 fn plot_errors_say_what_to_do() {
     let input = data_arg("ble_telemetry.bin");
     let dir = scratch("plot-errors");
     let png = dir.join("p.png");
     let png = png.to_str().unwrap();
-    let cases: [(&[&str], i32, &str); 4] = [
+    let cases: [(&[&str], i32, &str); 6] = [
+        (
+            &[
+                "plot",
+                "omnitiles",
+                &input,
+                "--fields",
+                "nope[pin=1].x",
+                "-o",
+                png,
+            ],
+            2,
+            "a filter follows a message type",
+        ),
+        (
+            &[
+                "plot",
+                "omnitiles",
+                &input,
+                "--fields",
+                "telemetry[layout=ble53",
+                "-o",
+                png,
+            ],
+            2,
+            "without its `]`",
+        ),
         (
             &["plot", "omnitiles", &input, "-o", png],
             2,

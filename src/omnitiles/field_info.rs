@@ -29,6 +29,7 @@ const fn imu(doc: &'static str, unit: Unit) -> FieldInfo {
 /// assert_eq!(FIELD_INFO.get("base_velocity", "vx").unwrap().range, None);
 /// ```
 pub static FIELD_INFO: FieldTable = FieldTable {
+    protocol: "omnitiles",
     entries: &[
         (
             "*",

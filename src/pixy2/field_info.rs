@@ -32,6 +32,7 @@ const fn degrees(doc: &'static str) -> FieldInfo {
 /// );
 /// ```
 pub static FIELD_INFO: FieldTable = FieldTable {
+    protocol: "pixy2",
     entries: &[
         (
             "*",

@@ -26,6 +26,7 @@ const fn doc(doc: &'static str) -> FieldInfo {
 /// assert_eq!(FIELD_INFO.get("analog_report", "value").unwrap().range, Some((0, 4095)));
 /// ```
 pub static FIELD_INFO: FieldTable = FieldTable {
+    protocol: "telemetrix",
     entries: &[
         ("*", "type", doc("The message type.").names(Message::NAMES)),
         (

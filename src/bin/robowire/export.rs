@@ -240,7 +240,23 @@ impl Recorder {
             #[cfg(feature = "cli-plot")]
             Some(plot) if format.format == Format::Jsonl => {
                 let output = format.output.as_deref();
-                let plot = crate::plot::Plot::new(plot, output, clock.is_some())?;
+                let source = match (&live.port, common.input.as_deref()) {
+                    (Some(port), _) => port.clone(),
+                    (None, Some(path)) if path.as_os_str() != "-" => {
+                        path.file_name().map_or(path.display().to_string(), |n| {
+                            n.to_string_lossy().into_owned()
+                        })
+                    }
+                    _ => "stdin".to_owned(),
+                };
+                let plot = crate::plot::Plot::new(
+                    plot,
+                    output,
+                    clock.is_some(),
+                    common.errors,
+                    fields,
+                    source,
+                )?;
                 Some(Sink::Plot(Box::new(plot)))
             }
             #[cfg(feature = "cli-plot")]
