@@ -344,6 +344,73 @@ fn mcap_messages_are_the_json_lines() {
 }
 
 #[test]
+fn a_file_without_times_says_so_and_start_gives_wall_clock_log_times() {
+    let dir = scratch("export-mcap-start");
+    let input = data_arg("ble_telemetry.bin");
+    let untimed = dir.join("untimed.mcap");
+    let out = run(
+        &[
+            "decode",
+            "omnitiles",
+            "--format",
+            "mcap",
+            "-o",
+            untimed.to_str().unwrap(),
+            &input,
+        ],
+        b"",
+    );
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert!(
+        out.stderr
+            .contains("no receive times, so the log times are frame indices")
+            && out.stderr.contains("--timestamps")
+            && out.stderr.contains("--start TIME"),
+        "{}",
+        out.stderr
+    );
+    let timed = dir.join("timed.mcap");
+    let out = run(
+        &[
+            "decode",
+            "omnitiles",
+            "--timestamps",
+            "--start",
+            "2026-12-06T12:00:00Z",
+            "--format",
+            "mcap",
+            "-o",
+            timed.to_str().unwrap(),
+            &input,
+        ],
+        b"",
+    );
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert!(!out.stderr.contains("log times"), "{}", out.stderr);
+    let bytes = std::fs::read(&timed).unwrap();
+    let start = 1_796_558_400_000_000_000u64;
+    for (_, _, _, log_time, data) in mcap_messages(&bytes) {
+        let t: Value = serde_json::from_str(&data).unwrap();
+        let micros = (t["t"].as_f64().unwrap() * 1e6).round() as u64;
+        assert_eq!(log_time, start + micros * 1000);
+    }
+    let summary = mcap::Summary::read(&bytes).unwrap().unwrap();
+    let metadata = mcap::read::metadata(&bytes, &summary.metadata_indexes[0])
+        .unwrap()
+        .metadata;
+    assert_eq!(metadata["start"], "2026-12-06T12:00:00.000000000Z");
+    assert_eq!(
+        metadata["time_source"],
+        "estimated from the byte offset at the baud rate"
+    );
+    assert!(metadata["input"].ends_with("ble_telemetry.bin"));
+    // --start needs a time source.
+    let out = run(&["decode", "omnitiles", "--start", "0", &input], b"");
+    assert_eq!(out.code, 2);
+    assert!(out.stderr.contains("--timestamps"), "{}", out.stderr);
+}
+
+#[test]
 fn mcap_log_times_are_the_receive_times() {
     let dir = scratch("export-mcap-times");
     let path = dir.join("out.mcap");

@@ -18,7 +18,7 @@ use cli_common::{run, scratch};
 use serde_json::Value;
 use serialport::{SerialPort, TTYPort};
 use std::io::{BufRead, BufReader, Read, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::ChildStderr;
 use std::process::{Child, Command, Stdio};
 use std::sync::Mutex;
@@ -238,8 +238,19 @@ fn a_pico_decodes_live_at_115200_baud() {
 /// status, the recording's and the saved capture's bytes, and the lines a
 /// decode of the capture from a file prints.
 fn record_and_stop(name: &str, linger: Duration) -> (Option<i32>, Vec<u8>, Vec<u8>, Vec<Value>) {
+    let (code, recording, saved, expected, _) = record_and_stop_in(name, name, linger);
+    (code, recording, saved, expected)
+}
+
+/// [`record_and_stop`] in a directory of its own (named after `label`),
+/// and that directory: it holds `tile.mcap`, `tile.bin` and `tile.bin.times`.
+fn record_and_stop_in(
+    name: &str,
+    label: &str,
+    linger: Duration,
+) -> (Option<i32>, Vec<u8>, Vec<u8>, Vec<Value>, PathBuf) {
     let _one = serial();
-    let dir = scratch(&format!("live-stop-{name}"));
+    let dir = scratch(&format!("live-stop-{label}"));
     let (recording, saved) = (dir.join("tile.mcap"), dir.join("tile.bin"));
     let bytes = tile_capture();
     let (mut master, slave) = pty_pair();
@@ -274,6 +285,7 @@ fn record_and_stop(name: &str, linger: Duration) -> (Option<i32>, Vec<u8>, Vec<u
         std::fs::read(&recording).unwrap(),
         std::fs::read(&saved).unwrap(),
         expected,
+        dir,
     )
 }
 
@@ -311,6 +323,76 @@ fn every_stop_signal_completes_the_recording() {
             "SIG{signal}: every frame and rejection is recorded"
         );
     }
+}
+
+#[test]
+fn live_log_times_are_unix_time_and_a_replay_reproduces_them() {
+    let before = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .unwrap()
+        .as_nanos() as u64;
+    let (code, recording, _, _, dir) = record_and_stop_in("TERM", "times", Duration::ZERO);
+    assert_eq!(code, Some(0));
+    let after = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .unwrap()
+        .as_nanos() as u64;
+    let times = |bytes: &[u8]| -> Vec<(u64, String)> {
+        mcap::MessageStream::new(bytes)
+            .unwrap()
+            .map(|m| {
+                let m = m.unwrap();
+                (m.log_time, String::from_utf8(m.data.to_vec()).unwrap())
+            })
+            .collect()
+    };
+    let live = times(&recording);
+    assert!(live.len() > 100);
+    // The metadata record: where and when.
+    let summary = mcap::Summary::read(&recording).unwrap().unwrap();
+    let index = summary.metadata_indexes.first().expect("a metadata record");
+    assert_eq!(index.name, "robowire");
+    let metadata = mcap::read::metadata(&recording, index).unwrap().metadata;
+    assert_eq!(metadata["protocol"], "omnitiles");
+    assert_eq!(metadata["baud"], "1000000");
+    assert_eq!(metadata["robowire"], env!("CARGO_PKG_VERSION"));
+    assert!(metadata["port"].starts_with("/dev/"));
+    let start: u64 = metadata["start_unix_ns"].parse().unwrap();
+    assert!((before..=after).contains(&start));
+    assert!(metadata["start"].ends_with('Z') && metadata["start"].starts_with("20"));
+    for (log_time, data) in &live {
+        assert!(
+            (before..=after).contains(log_time),
+            "{log_time} in {before}..{after}"
+        );
+        // The log time is the start plus "t", to the nanosecond.
+        let t: Value = serde_json::from_str(data).unwrap();
+        let micros = (t["t"].as_f64().unwrap() * 1e6).round() as u64;
+        assert_eq!(*log_time, start + micros * 1000, "{data}");
+    }
+    // The index keeps the start; a replay's log times are the live ones.
+    let index_text = std::fs::read_to_string(dir.join("tile.bin.times")).unwrap();
+    assert!(
+        index_text.contains(&format!("# start_unix_ns: {start}\n")),
+        "{index_text}"
+    );
+    let replay = dir.join("replay.mcap");
+    let out = run(
+        &[
+            "decode",
+            "omnitiles",
+            "--errors",
+            "--timestamps",
+            "--format",
+            "mcap",
+            "-o",
+            replay.to_str().unwrap(),
+            dir.join("tile.bin").to_str().unwrap(),
+        ],
+        b"",
+    );
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert_eq!(times(&std::fs::read(&replay).unwrap()), live);
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! Every format reads frames through the library's `serde` form, so none
 //! knows a message type.
 
-use crate::clock::{self, Clock, Save};
+use crate::clock::{self, micros, Clock, Save, Seconds};
 use crate::csv::Tables;
 use crate::driver::DecodeCommon;
 use crate::flatten::Row;
@@ -208,6 +208,8 @@ pub struct Recorder {
     pending: Option<Failure>,
     /// What the protocol's fields mean.
     fields: &'static FieldTable,
+    /// The Unix time of time 0 (0 when unknown), for MCAP log times.
+    start_unix_ns: u64,
 }
 
 impl Recorder {
@@ -267,10 +269,63 @@ impl Recorder {
             }
             _ => Sink::open(format, plain, fields)?,
         };
-        let Some(sink) = sink else {
+        let Some(mut sink) = sink else {
             return Ok(None);
         };
-        let save = live.save.as_deref().map(Save::create).transpose()?;
+        let start_unix_ns = live
+            .start
+            .or_else(|| clock.as_ref().and_then(Clock::start_unix_ns));
+        let mut source = vec![
+            ("robowire", env!("CARGO_PKG_VERSION").to_owned()),
+            ("protocol", fields.protocol.to_owned()),
+            (
+                "command",
+                std::env::args().skip(1).collect::<Vec<_>>().join(" "),
+            ),
+        ];
+        match (&live.port, common.input.as_deref()) {
+            (Some(port), _) => {
+                source.push(("port", port.clone()));
+                source.push(("baud", live.baud.to_string()));
+            }
+            (None, Some(path)) if path.as_os_str() != "-" => {
+                source.push(("input", path.display().to_string()));
+            }
+            _ => source.push(("input", "stdin".to_owned())),
+        }
+        source.push((
+            "time_source",
+            clock
+                .as_ref()
+                .map_or("none: log times are frame indices", Clock::describe)
+                .to_owned(),
+        ));
+        let save = match live.save.as_deref() {
+            Some(path) => Some(Save::create(path, start_unix_ns, &source)?),
+            None => None,
+        };
+        if let Sink::Mcap(recording) = &mut sink {
+            let mut metadata = source.clone();
+            if let Some(start) = start_unix_ns {
+                metadata.push(("start_unix_ns", start.to_string()));
+                metadata.push(("start", crate::clock::rfc3339(start)));
+            }
+            recording.metadata(&metadata)?;
+            if clock.is_none() {
+                eprintln!(
+                    "robowire: {}: no receive times, so the log times are frame indices \
+                     (0, 1, 2 … ns): add --timestamps (the capture's .times index, or its \
+                     baud rate) and --start TIME for wall-clock times",
+                    recording.name()
+                );
+            } else if start_unix_ns.is_none() {
+                eprintln!(
+                    "robowire: {}: log times count from 0 (1970 in a viewer): add --start TIME \
+                     for wall-clock times",
+                    recording.name()
+                );
+            }
+        }
         Ok(Some(Recorder {
             clock,
             save,
@@ -283,6 +338,7 @@ impl Recorder {
             text: Vec::with_capacity(256),
             pending: None,
             fields,
+            start_unix_ns: start_unix_ns.unwrap_or(0),
         }))
     }
 
@@ -334,7 +390,9 @@ impl Recorder {
         frame: bool,
         stdout: &mut dyn Write,
     ) -> Result<(), Failure> {
-        let seconds = self.clock.as_mut().map(|clock| clock.time(last));
+        // Times to the microsecond, as printed: a replay gives the same.
+        let micros = self.clock.as_mut().map(|clock| micros(clock.time(last)));
+        let seconds = micros.map(|us| us as f64 / 1e6);
         let index = self.events;
         self.events += 1;
         #[cfg(feature = "cli-plot")]
@@ -353,8 +411,8 @@ impl Recorder {
         }
         if let Sink::Csv(tables) = &mut self.sink {
             self.row.clear();
-            if let Some(t) = seconds {
-                self.row.push_number("t", format_args!("{t:.6}"));
+            if let Some(us) = micros {
+                self.row.push_number("t", Seconds(us));
             }
             self.row.walk(event).map_err(bug)?;
             return tables.write(&self.row);
@@ -362,11 +420,11 @@ impl Recorder {
         let text = &mut self.text;
         text.clear();
         serde_json::to_writer(&mut *text, event).map_err(bug)?;
-        if let Some(t) = seconds {
+        if let Some(us) = micros {
             // `{"t":…,` before the event's own members.
             let members = text.split_off(1);
             text.clear();
-            let _ = write!(text, "{{\"t\":{t:.6}");
+            let _ = write!(text, "{{\"t\":{}", Seconds(us));
             if members.len() > 1 {
                 text.push(b',');
             }
@@ -394,8 +452,11 @@ impl Recorder {
                         }
                     }
                 };
-                // The time as printed (microseconds), in nanoseconds.
-                let nanoseconds = seconds.map_or(index, |t| (t * 1e6).round() as u64 * 1000);
+                // The time as printed (microseconds) after the start, in
+                // Unix nanoseconds.
+                let nanoseconds = micros.map_or(index, |us| {
+                    self.start_unix_ns.saturating_add(us.saturating_mul(1000))
+                });
                 let fields = self.fields;
                 let schema = || channel_schema(event, kind, fields, seconds.is_some());
                 recording.write(kind, text, nanoseconds, schema)

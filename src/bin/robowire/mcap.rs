@@ -103,6 +103,29 @@ impl Recording {
             .map_err(|error| failure(&self.name, error))
     }
 
+    /// The recording's name in messages (its path, or `stdout`).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Write the `robowire` metadata record: where and when the frames
+    /// came from.
+    pub fn metadata(&mut self, entries: &[(&str, String)]) -> Result<(), Failure> {
+        let Some(writer) = self.writer.as_mut() else {
+            return Ok(());
+        };
+        let metadata = mcap::records::Metadata {
+            name: "robowire".to_owned(),
+            metadata: entries
+                .iter()
+                .map(|(key, value)| ((*key).to_owned(), value.clone()))
+                .collect(),
+        };
+        writer
+            .write_metadata(&metadata)
+            .map_err(|error| failure(&self.name, error))
+    }
+
     /// Close the open chunk and write it out if it has been open for
     /// [`CHUNK_PERIOD`] (called before a read that may wait, so a live
     /// recording is complete up to the last second or so at any time).

@@ -56,6 +56,17 @@ pub struct LiveArgs {
     /// to FILE.times (so `decode FILE --timestamps` replays them).
     #[arg(long, value_name = "FILE", display_order = 10)]
     pub save: Option<PathBuf>,
+    /// The wall-clock time of time 0 for --timestamps: Unix seconds or RFC
+    /// 3339 (2026-12-06T03:50:00Z). MCAP log times count from it (a live
+    /// run takes it from the system clock; a replayed index keeps it).
+    #[arg(
+        long,
+        value_name = "TIME",
+        requires = "timestamps",
+        value_parser = crate::clock::parse_start,
+        display_order = 11
+    )]
+    pub start: Option<u64>,
 }
 
 /// The options of an `encode` that send frames to a port.
