@@ -156,6 +156,9 @@ pub struct FieldInfo {
     /// An object whose members depend on a type the message names (a
     /// sensor's reading, a module's message): none of them is required.
     pub by_type: bool,
+    /// Names the thing the message is about (a pin, a sensor, a module):
+    /// the tool gives each its own topic (`/telemetrix/analog_report/26`).
+    pub entity: bool,
 }
 
 impl FieldInfo {
@@ -170,6 +173,7 @@ impl FieldInfo {
             or_number: false,
             optional: false,
             by_type: false,
+            entity: false,
         }
     }
 
@@ -210,6 +214,12 @@ impl FieldInfo {
         self
     }
 
+    /// Names the thing the message is about.
+    pub const fn entity(mut self) -> FieldInfo {
+        self.entity = true;
+        self
+    }
+
     /// Carried by some frames only.
     pub const fn optional(mut self) -> FieldInfo {
         self.optional = true;
@@ -236,6 +246,23 @@ impl FieldTable {
             .iter()
             .find(|(m, p, _)| (*m == "*" || *m == message) && path_matches(p, path))
             .map(|(_, _, info)| info)
+    }
+}
+
+impl FieldTable {
+    /// The top-level field that names what a `message` is about (its pin,
+    /// sensor or module), if the message type has one.
+    ///
+    /// ```
+    /// let key = robowire::telemetrix::FIELD_INFO.entity_key("analog_report");
+    /// assert_eq!(key, Some("pin"));
+    /// assert_eq!(robowire::telemetrix::FIELD_INFO.entity_key("pong"), None);
+    /// ```
+    pub fn entity_key(&self, message: &str) -> Option<&'static str> {
+        self.entries
+            .iter()
+            .find(|(m, _, info)| *m == message && info.entity)
+            .map(|(_, path, _)| *path)
     }
 }
 

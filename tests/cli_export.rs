@@ -102,15 +102,19 @@ fn csv_tables_hold_every_json_line() {
             }
             let kind = match stem.rsplit_once('-') {
                 Some((kind, n)) if n.parse::<u32>().is_ok() => kind.to_owned(),
-                _ => stem,
+                _ => stem.clone(),
             };
             let mut reader = csv::Reader::from_path(&path).unwrap();
             let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+            let type_column = header.iter().position(|h| h == "type");
             for record in reader.records() {
                 let record = record.unwrap();
                 let cells: Vec<String> = record.iter().map(String::from).collect();
                 let offset = cells[0].parse().unwrap();
-                rows.insert((kind.clone(), offset), (header.clone(), cells));
+                // A table per pin or sensor: its rows' type is in the row.
+                let kind = type_column.map_or(kind.clone(), |c| cells[c].clone());
+                assert!(stem.starts_with(&kind), "{stem}: a {kind} row");
+                rows.insert((kind, offset), (header.clone(), cells));
                 count += 1;
             }
         }
@@ -331,7 +335,16 @@ fn mcap_messages_are_the_json_lines() {
             let kind = value
                 .get("type")
                 .map_or("rejected", |t| t.as_str().unwrap());
-            assert_eq!(topic, &format!("/{kind}"));
+            // A topic per pin, sensor and module, a topic per type otherwise.
+            let table = match protocol {
+                "telemetrix" => &robowire::telemetrix::FIELD_INFO,
+                _ => &robowire::omnitiles::FIELD_INFO,
+            };
+            let expected = match table.entity_key(kind) {
+                Some(key) => format!("/{protocol}/{kind}/{}", value[key]),
+                None => format!("/{protocol}/{kind}"),
+            };
+            assert_eq!(topic, &expected, "{line}");
             assert_eq!(schema_name, kind);
             let first = seen.insert(topic.clone());
             check_schema(schema, &value, first, line);
@@ -408,6 +421,64 @@ fn a_file_without_times_says_so_and_start_gives_wall_clock_log_times() {
     let out = run(&["decode", "omnitiles", "--start", "0", &input], b"");
     assert_eq!(out.code, 2);
     assert!(out.stderr.contains("--timestamps"), "{}", out.stderr);
+}
+
+#[test]
+fn topics_type_keeps_a_channel_per_message_type() {
+    let dir = scratch("export-mcap-topics");
+    let input = data_arg("telemetrix_reports.bin");
+    let topics = |extra: &[&str], name: &str| {
+        let path = dir.join(name);
+        let args = [
+            &[
+                "decode",
+                "telemetrix",
+                "--format",
+                "mcap",
+                "-o",
+                path.to_str().unwrap(),
+            ][..],
+            extra,
+            &[&input],
+        ]
+        .concat();
+        let out = run(&args, b"");
+        assert_eq!(out.code, 0, "{}", out.stderr);
+        let mut topics: Vec<String> = mcap_messages(&std::fs::read(&path).unwrap())
+            .into_iter()
+            .map(|m| m.0)
+            .collect();
+        topics.sort();
+        topics.dedup();
+        topics
+    };
+    let by_entity = topics(&[], "entity.mcap");
+    for topic in [
+        "/telemetrix/analog_report/26",
+        "/telemetrix/analog_report/27",
+        "/telemetrix/digital_report/10",
+        "/telemetrix/sensor_report/0",
+        "/telemetrix/sensor_report/1",
+        "/telemetrix/pong",
+    ] {
+        assert!(
+            by_entity.contains(&topic.to_owned()),
+            "{topic}: {by_entity:?}"
+        );
+    }
+    let by_type = topics(&["--topics", "type"], "type.mcap");
+    assert!(
+        by_type.contains(&"/analog_report".to_owned()),
+        "{by_type:?}"
+    );
+    assert!(
+        by_type.contains(&"/sensor_report".to_owned()),
+        "{by_type:?}"
+    );
+    assert!(
+        by_type.iter().all(|t| t.matches('/').count() == 1),
+        "{by_type:?}"
+    );
 }
 
 #[test]

@@ -47,7 +47,7 @@ pub static FIELD_INFO: FieldTable = FieldTable {
             "byte",
             doc("The byte echoed back."),
         ),
-        ("digital_report", "pin", doc("GPIO.")),
+        ("digital_report", "pin", doc("GPIO.").entity()),
         (
             "digital_report",
             "value",
@@ -56,7 +56,7 @@ pub static FIELD_INFO: FieldTable = FieldTable {
         (
             "analog_report",
             "pin",
-            doc("GPIO 26..=30 (ADC 0..=4 in older dialects)."),
+            doc("GPIO 26..=30 (ADC 0..=4 in older dialects).").entity(),
         ),
         (
             "analog_report",
@@ -77,7 +77,7 @@ pub static FIELD_INFO: FieldTable = FieldTable {
             doc("Bytes written, or −1 (error), −2 (timeout).").unit(Unit::Byte),
         ),
         ("*", "stale", doc("A byte without meaning.")),
-        ("sonar_distance", "trig", doc("Trigger GPIO.")),
+        ("sonar_distance", "trig", doc("Trigger GPIO.").entity()),
         (
             "sonar_distance",
             "echo",
@@ -100,7 +100,7 @@ pub static FIELD_INFO: FieldTable = FieldTable {
             "hundredths",
             doc("Hundredths of a centimetre (upstream form).").optional(),
         ),
-        ("dht_report", "pin", doc("GPIO.")),
+        ("dht_report", "pin", doc("GPIO.").entity()),
         (
             "dht_report",
             "hum_int",
@@ -121,11 +121,30 @@ pub static FIELD_INFO: FieldTable = FieldTable {
             "temp_hundredths",
             doc("Temperature, hundredths of a degree."),
         ),
-        ("encoder_report", "pin_a", doc("The encoder's A GPIO.")),
+        (
+            "encoder_report",
+            "pin_a",
+            doc("The encoder's A GPIO.").entity(),
+        ),
         (
             "encoder_report",
             "steps",
             doc("Steps since the last report.").unit(Unit::Step),
+        ),
+        (
+            "sensor_report",
+            "sensor_num",
+            doc("The sensor's number, in the order of SENSOR_NEW.").entity(),
+        ),
+        (
+            "module_report",
+            "module_num",
+            doc("The module's number, in the order of MODULE_NEW.").entity(),
+        ),
+        (
+            "module_data",
+            "module_num",
+            doc("The module's number, in the order of MODULE_NEW.").entity(),
         ),
         (
             "*",

@@ -1,4 +1,6 @@
-//! `--format csv -o DIR`: one CSV file per message type in `DIR`, nested
+//! `--format csv -o DIR`: one CSV file per message type in `DIR` (per
+//! pin, sensor and module with `--topics entity`, the default:
+//! `analog_report_pin26.csv`), nested
 //! fields flattened (`imu.ax`, `uwb.0`), `null` an empty cell. A type whose
 //! frames come in more than one shape (telemetry of two layouts) gets a file
 //! per shape: `telemetry.csv`, `telemetry-2.csv`. Rejections (with
@@ -7,6 +9,7 @@
 //! protocol's field table), one row per column: the tables themselves stay
 //! one header row and numbers, as PlotJuggler and pandas read them.
 
+use crate::export::Topics;
 use crate::flatten::{csv_field as quote, Row};
 use crate::json_schema::field_info;
 use crate::Failure;
@@ -19,6 +22,8 @@ use std::path::{Path, PathBuf};
 /// One open table: its header and its file.
 struct Table {
     kind: String,
+    /// The entity cell its rows share (`26` for pin 26), with `--topics entity`.
+    entity: Option<String>,
     names: String,
     path: PathBuf,
     file: BufWriter<File>,
@@ -37,12 +42,18 @@ pub struct Tables {
     fields: &'static FieldTable,
     /// `units.csv`, once a table exists.
     units: Option<BufWriter<File>>,
+    /// A table per pin, sensor and module (else per message type).
+    by_entity: bool,
 }
 
 impl Tables {
     /// Write tables into `dir`, creating it if needed; `fields` gives the
     /// columns' units.
-    pub fn create(dir: &Path, fields: &'static FieldTable) -> Result<Tables, Failure> {
+    pub fn create(
+        dir: &Path,
+        fields: &'static FieldTable,
+        topics: Topics,
+    ) -> Result<Tables, Failure> {
         fs::create_dir_all(dir).map_err(|error| Failure::Io {
             context: dir.display().to_string(),
             error,
@@ -54,14 +65,28 @@ impl Tables {
             last: None,
             fields,
             units: None,
+            by_entity: topics == Topics::Entity,
         })
     }
 
     /// Append `row` (walked with [`Row::walk`]) to its table.
     pub fn write(&mut self, row: &Row) -> Result<(), Failure> {
+        let entity = match self.by_entity {
+            true => self
+                .fields
+                .entity_key(&row.type_name)
+                .and_then(|key| row.cell(key)),
+            false => None,
+        };
         let i = match self.last {
-            Some(i) if self.tables[i].names == row.names && row.is_kind(&self.tables[i].kind) => i,
-            _ => self.table_for(row)?,
+            Some(i)
+                if self.tables[i].names == row.names
+                    && row.is_kind(&self.tables[i].kind)
+                    && self.tables[i].entity.as_deref() == entity =>
+            {
+                i
+            }
+            _ => self.table_for(row, entity.map(str::to_owned))?,
         };
         self.last = Some(i);
         let table = &mut self.tables[i];
@@ -72,18 +97,23 @@ impl Tables {
         written.map_err(|error| failure(&table.path, error))
     }
 
-    fn table_for(&mut self, row: &Row) -> Result<usize, Failure> {
+    fn table_for(&mut self, row: &Row, entity: Option<String>) -> Result<usize, Failure> {
         let kind = row.kind();
+        // The table's name: the type, and the entity's key and value.
+        let base = match (&entity, self.fields.entity_key(&row.type_name)) {
+            (Some(value), Some(key)) => format!("{kind}_{key}{value}"),
+            _ => kind.clone(),
+        };
         let tables = &self.tables;
-        let known = self.kinds.get(&kind).into_iter().flatten();
+        let known = self.kinds.get(&base).into_iter().flatten();
         if let Some(&i) = known.clone().find(|&&i| tables[i].names == row.names) {
             return Ok(i);
         }
         let n = known.count();
         let file_name = if n == 0 {
-            format!("{}.csv", file_safe(&kind))
+            format!("{}.csv", file_safe(&base))
         } else {
-            format!("{}-{}.csv", file_safe(&kind), n + 1)
+            format!("{}-{}.csv", file_safe(&base), n + 1)
         };
         let path = self.dir.join(file_name);
         let mut file = File::create(&path)
@@ -93,12 +123,13 @@ impl Tables {
         self.describe(&path, &kind, row)?;
         self.tables.push(Table {
             kind: kind.clone(),
+            entity,
             names: row.names.clone(),
             path,
             file,
         });
         let i = self.tables.len() - 1;
-        self.kinds.entry(kind).or_default().push(i);
+        self.kinds.entry(base).or_default().push(i);
         Ok(i)
     }
 

@@ -51,6 +51,17 @@ impl Compression {
     }
 }
 
+/// How recordings and tables are split.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Topics {
+    /// A topic per thing a robot has: `/PROTOCOL/TYPE/ENTITY` for messages
+    /// about a pin, sensor or module (`/telemetrix/sensor_report/0`),
+    /// `/PROTOCOL/TYPE` for the others; CSV tables `TYPE_KEYVALUE.csv`.
+    Entity,
+    /// A topic per message type, `/TYPE`; a CSV table per type.
+    Type,
+}
+
 /// The options of a `decode` that choose its output.
 #[derive(Debug, Args)]
 pub struct FormatArgs {
@@ -65,10 +76,15 @@ pub struct FormatArgs {
     /// lz4 or none.
     #[arg(long, value_enum, value_name = "CODEC", display_order = 13)]
     pub compression: Option<Compression>,
+    /// How MCAP channels and CSV tables are split: a topic per pin, sensor
+    /// and module (`/telemetrix/analog_report/26`, the default), or one per
+    /// message type (`/analog_report`).
+    #[arg(long, value_enum, default_value_t = Topics::Entity, display_order = 14)]
+    pub topics: Topics,
     /// Overwrite the -o and --save files (or fill a non-empty -o DIR) if
     /// they exist; without it an existing one is refused before anything is
     /// read.
-    #[arg(long, display_order = 14)]
+    #[arg(long, display_order = 15)]
     pub force: bool,
 }
 
@@ -145,7 +161,7 @@ impl Sink {
             (Format::Jsonl, Some(path)) => {
                 Sink::Jsonl(Some((path.display().to_string(), create(path)?)))
             }
-            (Format::Csv, Some(dir)) => Sink::Csv(Tables::create(dir, fields)?),
+            (Format::Csv, Some(dir)) => Sink::Csv(Tables::create(dir, fields, format.topics)?),
             (Format::Csv, None) => {
                 return Err(Failure::Usage(
                     "--format csv writes one file per message type: name a directory with -o DIR"
@@ -210,6 +226,10 @@ pub struct Recorder {
     fields: &'static FieldTable,
     /// The Unix time of time 0 (0 when unknown), for MCAP log times.
     start_unix_ns: u64,
+    /// How channels are split.
+    topics: Topics,
+    /// The topic of the event being written.
+    topic: String,
 }
 
 impl Recorder {
@@ -339,6 +359,8 @@ impl Recorder {
             pending: None,
             fields,
             start_unix_ns: start_unix_ns.unwrap_or(0),
+            topics: format.topics,
+            topic: String::new(),
         }))
     }
 
@@ -458,8 +480,22 @@ impl Recorder {
                     self.start_unix_ns.saturating_add(us.saturating_mul(1000))
                 });
                 let fields = self.fields;
+                let topic = &mut self.topic;
+                topic.clear();
+                match self.topics {
+                    Topics::Type => topic.extend(["/", kind]),
+                    Topics::Entity => {
+                        topic.extend(["/", fields.protocol, "/", kind]);
+                        let entity = fields
+                            .entity_key(kind)
+                            .and_then(|key| top_level_number(text, key));
+                        if let Some(entity) = entity {
+                            topic.extend(["/", entity]);
+                        }
+                    }
+                }
                 let schema = || channel_schema(event, kind, fields, seconds.is_some());
-                recording.write(kind, text, nanoseconds, schema)
+                recording.write(kind, topic, text, nanoseconds, schema)
             }
             Sink::Csv(_) => unreachable!("CSV rows are written above"),
             #[cfg(feature = "cli-plot")]
@@ -520,6 +556,49 @@ fn leading_kind(json: &[u8], frame: bool) -> Option<&str> {
     (name.get(end) == Some(&b'"'))
         .then(|| std::str::from_utf8(&name[..end]).ok())
         .flatten()
+}
+
+/// The number member `key` of the JSON object `json` has at its top level
+/// (`"pin":26`), as written.
+fn top_level_number<'j>(json: &'j [u8], key: &str) -> Option<&'j str> {
+    let (mut depth, mut in_string, mut escaped) = (0usize, false, false);
+    let mut i = 0;
+    while i < json.len() {
+        let b = json[i];
+        if in_string {
+            match b {
+                _ if escaped => escaped = false,
+                b'\\' => escaped = true,
+                b'"' => in_string = false,
+                _ => {}
+            }
+        } else {
+            match b {
+                b'{' | b'[' => depth += 1,
+                b'}' | b']' => depth = depth.saturating_sub(1),
+                b'"' if depth == 1 => {
+                    let rest = &json[i + 1..];
+                    let named = rest
+                        .strip_prefix(key.as_bytes())
+                        .and_then(|r| r.strip_prefix(b"\":"));
+                    if let Some(value) = named {
+                        let digits = value
+                            .iter()
+                            .take_while(|b| b.is_ascii_digit() || **b == b'-')
+                            .count();
+                        return std::str::from_utf8(&value[..digits])
+                            .ok()
+                            .filter(|v| !v.is_empty());
+                    }
+                    in_string = true;
+                }
+                b'"' => in_string = true,
+                _ => {}
+            }
+        }
+        i += 1;
+    }
+    None
 }
 
 /// The library's types always serialize: a failure here is a bug in

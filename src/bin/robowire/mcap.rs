@@ -1,6 +1,8 @@
 //! `--format mcap`: an MCAP recording (the ROS 2 and Foxglove file format)
-//! with one channel per message type (topic `/TYPE`, rejections on
-//! `/rejected`), JSON message encoding, each message exactly the JSON line
+//! with one channel per topic (`/PROTOCOL/TYPE/ENTITY` for a pin's, a
+//! sensor's or a module's messages, `/PROTOCOL/TYPE` for the others,
+//! rejections on `/PROTOCOL/rejected`; `/TYPE` with `--topics type`), JSON
+//! message encoding, each message exactly the JSON line
 //! the default format prints. Each channel's JSON Schema comes from
 //! [`json_schema`](crate::json_schema): exact types, units and descriptions
 //! from the protocol's field table. Log and publish times are the receive
@@ -25,7 +27,7 @@ const CHUNK_PERIOD: Duration = Duration::from_millis(800);
 pub struct Recording {
     name: String,
     writer: Option<Writer<NoSeek<Box<dyn Write>>>>,
-    /// Each kind's channel and its next sequence number.
+    /// Each topic's channel and its next sequence number.
     channels: HashMap<String, (u16, u32)>,
     /// When the open chunk got its first message.
     chunk_opened: Option<Instant>,
@@ -62,11 +64,12 @@ impl Recording {
     }
 
     /// Record `json` (one JSON object: a frame, or a rejection when `kind`
-    /// is `rejected`) at `nanoseconds`; `schema` gives the JSON Schema of
-    /// its channel when it is the first on it.
+    /// is `rejected`) on `topic` at `nanoseconds`; `schema` gives the JSON
+    /// Schema of its channel when it is the first on it.
     pub fn write(
         &mut self,
         kind: &str,
+        topic: &str,
         json: &[u8],
         nanoseconds: u64,
         schema: impl FnOnce() -> Result<Value, String>,
@@ -74,7 +77,7 @@ impl Recording {
         let Some(writer) = self.writer.as_mut() else {
             return Ok(());
         };
-        let (channel, sequence) = match self.channels.get_mut(kind) {
+        let (channel, sequence) = match self.channels.get_mut(topic) {
             Some(entry) => entry,
             None => {
                 let schema = schema()
@@ -83,11 +86,12 @@ impl Recording {
                 let schema_id = writer
                     .add_schema(kind, "jsonschema", &schema)
                     .map_err(|error| failure(&self.name, error))?;
-                let topic = format!("/{kind}");
                 let channel = writer
-                    .add_channel(schema_id, &topic, "json", &BTreeMap::new())
+                    .add_channel(schema_id, topic, "json", &BTreeMap::new())
                     .map_err(|error| failure(&self.name, error))?;
-                self.channels.entry(kind.to_owned()).or_insert((channel, 0))
+                self.channels
+                    .entry(topic.to_owned())
+                    .or_insert((channel, 0))
             }
         };
         let header = MessageHeader {
