@@ -26,5 +26,6 @@ DatagramDecoder = _native.DatagramDecoder
 Telemetry = _native.Telemetry
 Imu = _native.Imu
 encode = _native.encode
+field_info = _native.field_info
 
-__all__ = ["Decoder", "DatagramDecoder", "Imu", "Telemetry", "encode"]
+__all__ = ["Decoder", "DatagramDecoder", "Imu", "Telemetry", "encode", "field_info"]

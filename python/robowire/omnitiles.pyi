@@ -1,7 +1,7 @@
 """OmniTiles: host commands and tile telemetry (``a5``, id, payload, sum)."""
 
 from collections.abc import Iterable, Mapping
-from typing import Any, Literal, Optional, Union
+from typing import Any, ClassVar, Literal, Optional, TypedDict, Union
 
 from typing_extensions import Self, TypeAlias, final
 
@@ -15,9 +15,25 @@ __all__ = ["Decoder", "DatagramDecoder", "Imu", "Telemetry", "encode"]
 
 _Layout: TypeAlias = Literal["pos7", "uwb15", "uwbtof17", "spi45", "ble53"]
 
+class FieldInfo(TypedDict):
+    """What a field means, from the library's field table."""
+
+    unit: Optional[str]
+    doc: str
+    no_reading: bool
+    range: Optional[tuple[int, int]]
+    names: list[str]
+    optional: bool
+
+def field_info(type: str, path: str, /) -> Optional[FieldInfo]:
+    """What field ``path`` (``"imu.az"``, ``"uwb.2"``) of message ``type`` means."""
+
 @final
 class Imu:
     """One IMU sample; each value is the wire's f32 exactly (NaN, inf included)."""
+
+    units: ClassVar[dict[str, str]]
+    """``{"ax": "m/s²", ..., "gz": "rad/s"}``."""
 
     @property
     def ax(self) -> float:
@@ -64,6 +80,14 @@ class Telemetry:
     @property
     def m2_pos(self) -> Optional[int]:
         """M2 position, raw 0..4095."""
+    @property
+    def m1_pos_mm(self) -> Optional[float]:
+        """M1 position in mm, ``m1_pos / 4095 * 150`` (the SDK's formula)."""
+    @property
+    def m2_pos_mm(self) -> Optional[float]:
+        """M2 position in mm, ``m2_pos / 4095 * 100`` (the SDK's formula)."""
+    units: ClassVar[dict[str, str]]
+    """The unit of each field that has one (``{"m1_pos": "ADC counts", "uwb": "mm", ...}``)."""
     @property
     def uwb(self) -> Optional[tuple[Optional[int], Optional[int], Optional[int], Optional[int]]]:
         """UWB ranges to anchors 0..3 in mm (15, 17 and 53-byte layouts)."""

@@ -23,5 +23,6 @@ from ._robowire import pixy2 as _native
 
 Decoder = _native.Decoder
 encode = _native.encode
+field_info = _native.field_info
 
-__all__ = ["Decoder", "encode"]
+__all__ = ["Decoder", "encode", "field_info"]

@@ -1,11 +1,12 @@
 """Pixy2: host requests and device responses (``ae c1`` / ``af c1`` frames)."""
 
 from collections.abc import Mapping
-from typing import Any, Literal
+from typing import Any, Literal, Optional
 
 from typing_extensions import Self, TypeAlias, final
 
 from ._robowire import StreamDecoder, _Bytes, _Decoded
+from .omnitiles import FieldInfo
 
 _Source: TypeAlias = Literal["host", "device", "any"]
 
@@ -36,3 +37,6 @@ def encode(message: Mapping[str, Any], /) -> bytes:
     ``checksum`` (``True`` for ``af c1``) picks the frame form. Raises
     ``ValueError`` naming the field and its range if it is invalid.
     """
+
+def field_info(type: str, path: str, /) -> Optional[FieldInfo]:
+    """What field ``path`` of message ``type`` means, from the library's field table."""

@@ -18,5 +18,6 @@ from ._robowire import telemetrix as _native
 
 Decoder = _native.Decoder
 encode = _native.encode
+field_info = _native.field_info
 
-__all__ = ["Decoder", "encode"]
+__all__ = ["Decoder", "encode", "field_info"]

@@ -1,11 +1,12 @@
 """Telemetrix4RpiPico: host commands and Pico reports (LEN, id, payload)."""
 
 from collections.abc import Mapping
-from typing import Any, Literal
+from typing import Any, Literal, Optional
 
 from typing_extensions import Self, TypeAlias, final
 
 from ._robowire import StreamDecoder, _Bytes, _Decoded
+from .omnitiles import FieldInfo
 
 _Source: TypeAlias = Literal["host", "pico", "any"]
 _Dialect: TypeAlias = Literal["mirte13", "mirte12", "upstream11"]
@@ -38,3 +39,6 @@ def encode(message: Mapping[str, Any], /, dialect: _Dialect = "mirte13") -> byte
 
     Raises ``ValueError`` naming the field and its range if it is invalid.
     """
+
+def field_info(type: str, path: str, /) -> Optional[FieldInfo]:
+    """What field ``path`` of message ``type`` means, from the library's field table."""

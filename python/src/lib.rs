@@ -15,6 +15,7 @@ mod pixy2;
 mod schema;
 mod telemetrix;
 mod typed;
+mod units;
 
 use pyo3::prelude::*;
 

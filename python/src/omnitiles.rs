@@ -249,6 +249,8 @@ fn encode<'py>(message: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyBytes>> {
     encode_with(message, encode_frame::<Message>)
 }
 
+crate::units::field_info_function!(robowire::omnitiles::FIELD_INFO);
+
 /// `robowire.omnitiles`.
 pub fn module(py: Python<'_>) -> PyResult<Bound<'_, PyModule>> {
     let m = PyModule::new(py, "omnitiles")?;
@@ -257,5 +259,6 @@ pub fn module(py: Python<'_>) -> PyResult<Bound<'_, PyModule>> {
     m.add_class::<crate::typed::PyTelemetry>()?;
     m.add_class::<crate::typed::PyImu>()?;
     m.add_function(wrap_pyfunction!(encode, &m)?)?;
+    m.add_function(wrap_pyfunction!(field_info, &m)?)?;
     Ok(m)
 }

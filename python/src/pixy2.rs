@@ -104,10 +104,13 @@ fn encode<'py>(message: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyBytes>> {
     })
 }
 
+crate::units::field_info_function!(robowire::pixy2::FIELD_INFO);
+
 /// `robowire.pixy2`.
 pub fn module(py: Python<'_>) -> PyResult<Bound<'_, PyModule>> {
     let m = PyModule::new(py, "pixy2")?;
     m.add_class::<Pixy2Decoder>()?;
     m.add_function(wrap_pyfunction!(encode, &m)?)?;
+    m.add_function(wrap_pyfunction!(field_info, &m)?)?;
     Ok(m)
 }

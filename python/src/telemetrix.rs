@@ -216,10 +216,13 @@ fn encode<'py>(message: &Bound<'py, PyAny>, dialect: &str) -> PyResult<Bound<'py
     Ok(PyBytes::new(message.py(), &frame))
 }
 
+crate::units::field_info_function!(robowire::telemetrix::FIELD_INFO);
+
 /// `robowire.telemetrix`.
 pub fn module(py: Python<'_>) -> PyResult<Bound<'_, PyModule>> {
     let m = PyModule::new(py, "telemetrix")?;
     m.add_class::<TmxDecoder>()?;
     m.add_function(wrap_pyfunction!(encode, &m)?)?;
+    m.add_function(wrap_pyfunction!(field_info, &m)?)?;
     Ok(m)
 }

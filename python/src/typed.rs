@@ -227,6 +227,42 @@ impl PyTelemetry {
         self.telemetry.m2_pos
     }
 
+    /// M1 position in mm along its 150 mm stroke, ``m1_pos / 4095 * 150``
+    /// as the OmniTiles SDK computes it (bit for bit), or ``None``.
+    #[getter]
+    fn m1_pos_mm(&self) -> Option<f64> {
+        let raw = self.telemetry.m1_pos?;
+        Some(robowire::omnitiles::units::adc_to_mm_f64(
+            robowire::omnitiles::Motor::M1,
+            raw,
+        ))
+    }
+
+    /// M2 position in mm along its 100 mm stroke, ``m2_pos / 4095 * 100``
+    /// as the OmniTiles SDK computes it (bit for bit), or ``None``.
+    #[getter]
+    fn m2_pos_mm(&self) -> Option<f64> {
+        let raw = self.telemetry.m2_pos?;
+        Some(robowire::omnitiles::units::adc_to_mm_f64(
+            robowire::omnitiles::Motor::M2,
+            raw,
+        ))
+    }
+
+    /// The unit of each field that has one, from the library's field table:
+    /// ``{"m1_pos": "ADC counts", "uwb": "mm", "tof": "mm", ...}`` (the
+    /// IMU's are :attr:`Imu.units`).
+    #[classattr]
+    fn units(py: Python<'_>) -> PyResult<Bound<'_, pyo3::types::PyDict>> {
+        crate::units::units(
+            py,
+            &robowire::omnitiles::FIELD_INFO,
+            "telemetry",
+            "",
+            &["m1_pos", "m2_pos", "uwb", "tof", "m1_adcs", "m2_adcs"],
+        )
+    }
+
     /// UWB ranges to anchors 0..3 in mm, a tuple of four (each ``None`` for
     /// no reading), or ``None`` if the layout carries none.
     #[getter]
@@ -383,6 +419,19 @@ impl PyImu {
 
 #[pymethods]
 impl PyImu {
+    /// The unit of each value: ``{"ax": "m/s²", ..., "gz": "rad/s"}``,
+    /// from the library's field table.
+    #[classattr]
+    fn units(py: Python<'_>) -> PyResult<Bound<'_, pyo3::types::PyDict>> {
+        crate::units::units(
+            py,
+            &robowire::omnitiles::FIELD_INFO,
+            "telemetry",
+            "imu.",
+            &Imu::NAMES,
+        )
+    }
+
     /// The six names, in wire order.
     fn keys(&self) -> [&'static str; 6] {
         Imu::NAMES
