@@ -611,3 +611,32 @@ fn encode_writes_frames_to_a_port() {
     assert_eq!(received, expected);
     drop(slave);
 }
+
+#[test]
+fn encode_and_decode_share_one_port() {
+    // A decode reads the port while an encode writes requests to it (a
+    // Pixy2's, a command back): the port is opened with a shared lock.
+    let _one = serial();
+    let (mut master, slave) = pty_pair();
+    let device = slave.name().unwrap();
+    let running = spawn(&["decode", "pixy2", "--port", &device]);
+    master.set_timeout(Duration::from_secs(10)).unwrap();
+    let out = run(
+        &["encode", "pixy2", "--port", &device],
+        b"{\"type\":\"get_resolution\"}\n",
+    );
+    assert_eq!(out.code, 0, "the second run opens the port: {}", out.stderr);
+    let mut request = [0u8; 5];
+    master.read_exact(&mut request).unwrap();
+    assert_eq!(request, [0xae, 0xc1, 0x0c, 0x01, 0x00]);
+    // The answer the device gives reaches the decode.
+    master
+        .write_all(&cli_common::hex("af c1 0d 04 0d 01 3c 01 d0 00"))
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(300));
+    signal(&running.child, "TERM");
+    let (code, stdout, _) = finish(running);
+    assert_eq!(code, Some(0));
+    assert!(stdout.contains("\"type\":\"resolution\""), "{stdout}");
+    drop(slave);
+}

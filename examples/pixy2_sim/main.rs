@@ -11,13 +11,22 @@
 //! cargo run --example pixy2_sim                   # the host's view
 //! cargo run --example pixy2_sim -- CAPTURE.hex    # also write the conversation
 //! cargo run --example pixy2_sim -- --tests-data   # rewrite tests/data/pixy2_conversation.hex
+//! cargo run --example pixy2_sim -- --pty          # a live Pixy2 on a pseudo-terminal
 //! ```
+//!
+//! `--pty` opens a pseudo-terminal pair, prints the device to open, and
+//! answers every request a host writes there as the simulated camera does
+//! (its ball, its line features, busy when asked twice in one camera
+//! frame), until Ctrl-C: `robowire decode pixy2 --port DEV` shows the
+//! answers while `robowire encode pixy2 --port DEV` sends requests.
 //!
 //! The conversation, one SPI transaction per line, is committed as
 //! `tests/data/pixy2_conversation.hex`; `tests/pixy2_sim.rs` checks that it
 //! regenerates byte for byte. Decode it with
 //! `robowire decode pixy2 --hex tests/data/pixy2_conversation.hex`.
 
+#[path = "../common/live_pty.rs"]
+mod live_pty;
 mod sim;
 #[path = "../common/sim_args.rs"]
 mod sim_args;
@@ -28,12 +37,28 @@ use std::process::ExitCode;
 const USAGE: &str = "\
 Usage: cargo run --example pixy2_sim [-- CAPTURE.hex]
        cargo run --example pixy2_sim -- --tests-data
+       cargo run --example pixy2_sim -- --pty
 
 Runs a seeded conversation between a host and a simulated Pixy2 and prints
 what the host learns. With CAPTURE.hex, also writes the conversation (one SPI
-transaction per line); --tests-data rewrites tests/data/pixy2_conversation.hex.";
+transaction per line); --tests-data rewrites tests/data/pixy2_conversation.hex.
+--pty answers a host's requests live on a pseudo-terminal (it prints the
+device) until Ctrl-C.";
 
 fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
+    match live_pty::asked(USAGE) {
+        Some(Ok(())) => {
+            let mut camera = sim::Responder::new();
+            return live_pty::respond(
+                "pixy2",
+                "a camera answering every request",
+                "pixy2",
+                |bytes, out| camera.feed(bytes, &mut |frame| out.extend_from_slice(frame)),
+            );
+        }
+        Some(Err(status)) => return Ok(status),
+        None => {}
+    }
     let capture = match sim_args::parse(std::env::args_os().skip(1), USAGE, false) {
         sim_args::Request::Write(path) => Some(path),
         sim_args::Request::TestsData => Some(

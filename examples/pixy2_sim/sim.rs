@@ -492,49 +492,79 @@ mod scene {
     }
 }
 
+/// The simulated camera behind a decoder: bytes a host wrote in, the
+/// frames it answers out. The SPI device thread and `--pty` both use it.
+pub struct Responder {
+    decoder: pixy2::DeviceDecoder,
+    camera: Camera,
+    /// What it answered and dropped.
+    pub stats: DeviceStats,
+}
+
+impl Default for Responder {
+    fn default() -> Self {
+        Responder::new()
+    }
+}
+
+impl Responder {
+    /// A camera that has just booted.
+    pub fn new() -> Self {
+        Responder {
+            decoder: pixy2::device_decoder(),
+            camera: Camera::new(),
+            stats: DeviceStats::default(),
+        }
+    }
+
+    /// Take `bytes` from the host; call `answer` with each response frame
+    /// (the checksum form), in order.
+    pub fn feed(&mut self, bytes: &[u8], answer: &mut dyn FnMut(&[u8])) {
+        let mut out = [0u8; pixy2::MAX_FRAME_LEN];
+        let mut input = bytes;
+        while let Some(event) = self.decoder.decode(&mut input) {
+            let event = event.map(|frame| frame.message.body);
+            let response = match event {
+                Ok(request) => self.camera.handle(request),
+                // What the device answers to requests it cannot take.
+                Err(Rejected {
+                    error: Error::BadLength { .. } | Error::Malformed { .. },
+                    ..
+                }) => ResponseBuf::Error(DeviceError::InvalidRequest),
+                Err(Rejected {
+                    error: Error::UnknownType { .. },
+                    ..
+                }) => ResponseBuf::Error(DeviceError::TypeUnsupported),
+                // A bad checksum, more than 64 bytes, noise: no answer.
+                Err(_) => {
+                    self.stats.dropped += 1;
+                    continue;
+                }
+            };
+            self.stats.answered += 1;
+            let n = response.encode(&mut out).expect("responses fit");
+            answer(&out[..n]);
+        }
+    }
+}
+
 /// The device thread: decode what the host writes, queue the answers, and
 /// clock them out (after filler) when the host reads.
 fn device(transfers: Receiver<Transfer>, miso: Sender<Vec<u8>>) -> DeviceStats {
-    let mut decoder = pixy2::device_decoder();
-    let mut camera = Camera::new();
+    let mut responder = Responder::new();
     let mut rng = Rng(DEVICE_SEED);
     let mut queue = VecDeque::new();
-    let mut stats = DeviceStats::default();
-    let mut out = [0u8; pixy2::MAX_FRAME_LEN];
     for transfer in transfers {
         match transfer {
-            Transfer::Write(bytes) => {
-                let mut input = &bytes[..];
-                while let Some(event) = decoder.decode(&mut input) {
-                    let event = event.map(|frame| frame.message.body);
-                    let response = match event {
-                        Ok(request) => camera.handle(request),
-                        // What the device answers to requests it cannot take.
-                        Err(Rejected {
-                            error: Error::BadLength { .. } | Error::Malformed { .. },
-                            ..
-                        }) => ResponseBuf::Error(DeviceError::InvalidRequest),
-                        Err(Rejected {
-                            error: Error::UnknownType { .. },
-                            ..
-                        }) => ResponseBuf::Error(DeviceError::TypeUnsupported),
-                        // A bad checksum, more than 64 bytes, noise: no answer.
-                        Err(_) => {
-                            stats.dropped += 1;
-                            continue;
-                        }
-                    };
-                    stats.answered += 1;
-                    // SPI latency: some filler first; and the FIFO workaround
-                    // sometimes clocks the first byte out twice.
-                    queue.extend(std::iter::repeat(FILLER).take(rng.below(3) as usize));
-                    if rng.below(4) == 0 {
-                        queue.push_back(0xaf);
-                    }
-                    let n = response.encode(&mut out).expect("responses fit");
-                    queue.extend(&out[..n]);
+            Transfer::Write(bytes) => responder.feed(&bytes, &mut |frame| {
+                // SPI latency: some filler first; and the FIFO workaround
+                // sometimes clocks the first byte out twice.
+                queue.extend(std::iter::repeat(FILLER).take(rng.below(3) as usize));
+                if rng.below(4) == 0 {
+                    queue.push_back(0xaf);
                 }
-            }
+                queue.extend(frame);
+            }),
             Transfer::Read(n) => {
                 let mut bytes: Vec<u8> = queue.drain(..n.min(queue.len())).collect();
                 bytes.resize(n, FILLER);
@@ -544,7 +574,7 @@ fn device(transfers: Receiver<Transfer>, miso: Sender<Vec<u8>>) -> DeviceStats {
             }
         }
     }
-    stats
+    responder.stats
 }
 
 /// What the device counted.

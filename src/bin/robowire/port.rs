@@ -86,32 +86,36 @@ pub struct EncodePort {
 }
 
 /// Open `device` at `baud`, 8N1, its reads and writes waiting at most
-/// `timeout`. A missing device, a permission problem or a path that is no
-/// serial port is one line.
+/// `timeout`, shared with other robowire runs. A missing device, a
+/// permission problem or a path that is no serial port is one line.
 fn open(
     device: &str,
     baud: u32,
     timeout: Duration,
 ) -> Result<Box<dyn serialport::SerialPort>, Failure> {
-    serialport::new(device, baud)
-        .timeout(timeout)
-        .open()
-        .map_err(|error| {
-            if let Some(failure) = not_a_port(device) {
-                return failure;
+    let builder = serialport::new(device, baud).timeout(timeout);
+    // A shared lock, not an exclusive one: `encode --port` may write to the
+    // port a `decode --port` is reading (a request, a command back), as
+    // two handles in one program would. Another program that asks for the
+    // port exclusively is still refused while robowire has it.
+    #[cfg(unix)]
+    let builder = builder.exclusive(false);
+    builder.open().map_err(|error| {
+        if let Some(failure) = not_a_port(device) {
+            return failure;
+        }
+        let error = io::Error::from(error);
+        let hint = match error.kind() {
+            io::ErrorKind::PermissionDenied => {
+                " (on Linux, add yourself to the group that owns it, often dialout)"
             }
-            let error = io::Error::from(error);
-            let hint = match error.kind() {
-                io::ErrorKind::PermissionDenied => {
-                    " (on Linux, add yourself to the group that owns it, often dialout)"
-                }
-                _ => "",
-            };
-            Failure::Io {
-                context: format!("{device}: cannot open the serial port{hint}"),
-                error,
-            }
-        })
+            _ => "",
+        };
+        Failure::Io {
+            context: format!("{device}: cannot open the serial port{hint}"),
+            error,
+        }
+    })
 }
 
 /// Why `device`, which did not open as a serial port, is none: a regular
