@@ -94,6 +94,7 @@
 //! | `defmt` | `defmt::Format` for every public type, for logging from firmware | yes |
 //! | `cli` | the `robowire` command-line tool (turns on `serde`) | no (std) |
 //! | `cli-plot` | `robowire plot`: PNG and SVG plots (turns on `cli`) | no (std) |
+//! | `cli-foxglove` | `decode --port --foxglove`: live in Foxglove, commands back (turns on `cli`; Rust 1.88) | no (std) |
 //!
 //! The library needs Rust 1.81; the `cli` tool needs 1.85.
 //!

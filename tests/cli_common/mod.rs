@@ -2,6 +2,9 @@
 //! the sample captures. Each test file uses a subset.
 #![allow(dead_code)]
 
+#[cfg(unix)]
+pub mod live;
+
 use serde_json::Value;
 use std::io::Write;
 use std::path::{Path, PathBuf};

@@ -73,6 +73,10 @@ pub struct DecodeCommon {
     /// The output format and destination.
     #[command(flatten)]
     pub format: FormatArgs,
+    /// A live Foxglove view, with commands back.
+    #[cfg(feature = "cli-foxglove")]
+    #[command(flatten)]
+    pub foxglove: crate::foxglove::FoxgloveArgs,
 }
 
 impl DecodeCommon {
@@ -260,19 +264,20 @@ pub struct Printer<'o> {
 
 impl<'o> Printer<'o> {
     /// A printer writing to `out` in the format `common` asks for;
-    /// rejections are printed with `--errors`.
-    /// `fields` describes the protocol's fields to the recording's schemas.
-    pub fn new(
+    /// rejections are printed with `--errors`. `protocol` describes its
+    /// fields to the recording's schemas and encodes the commands a live
+    /// view takes back.
+    pub fn new<P: Schema + Send + Sync + 'static>(
         out: &'o mut Output,
         common: &DecodeCommon,
-        fields: &'static FieldTable,
+        protocol: P,
     ) -> Result<Self, Failure> {
         let plot = out.plot.take();
         common
             .format
             .refuse_overwrite(common.live.save.as_deref())?;
         if !out.judging {
-            out.recorder = Recorder::new(common, plot, fields)?;
+            out.recorder = Recorder::new(common, plot, P::FIELDS, || line_encoder(protocol))?;
         }
         Ok(Printer {
             out,
@@ -565,6 +570,28 @@ pub fn encode_lines<P: Schema>(
         return Err(Failure::Reported(format!("{bad} malformed line{s}")));
     }
     Ok(())
+}
+
+/// Turns one JSON line into the bytes of its frame, or says why it cannot.
+pub type LineEncoder = Box<dyn Fn(&[u8]) -> Result<Vec<u8>, String> + Send + Sync>;
+
+/// `protocol`'s encoder for single lines, as `encode` reads them: what a
+/// command published back from a live view goes through.
+pub fn line_encoder<P: Schema + Send + Sync + 'static>(protocol: P) -> LineEncoder {
+    Box::new(move |line| {
+        let line = match read_line::<P::Line>(line) {
+            Ok(Some(line)) => line,
+            Ok(None) => return Err("a diagnostic event (error, no type) is no message".to_owned()),
+            Err((Some(column), message)) => return Err(format!("column {column}: {message}")),
+            Err((None, message)) => return Err(message),
+        };
+        let mut frame = Vec::new();
+        protocol.encode(&line, &mut frame)?;
+        if frame.is_empty() {
+            return Err("the message has no bytes of its own to write".to_owned());
+        }
+        Ok(frame)
+    })
 }
 
 /// One JSON line read into `L`; `None` for a diagnostic event (an object with

@@ -5,7 +5,7 @@
 
 use crate::clock::{self, micros, Clock, Save, Seconds};
 use crate::csv::Tables;
-use crate::driver::DecodeCommon;
+use crate::driver::{DecodeCommon, LineEncoder};
 use crate::flatten::Row;
 use crate::json_schema::channel_schema;
 use crate::mcap::Recording;
@@ -230,15 +230,20 @@ pub struct Recorder {
     topics: Topics,
     /// The topic of the event being written.
     topic: String,
+    /// The live Foxglove view, if one is served.
+    #[cfg(feature = "cli-foxglove")]
+    view: Option<crate::foxglove::LiveView>,
 }
 
 impl Recorder {
     /// The recorder `common`'s options (and `plot`, for `robowire plot`)
-    /// ask for, if they ask for more than plain JSON lines on stdout.
+    /// ask for, if they ask for more than plain JSON lines on stdout;
+    /// `encoder` gives a live view the protocol's encoder for commands back.
     pub fn new(
         common: &DecodeCommon,
         plot: Option<PlotRequest>,
         fields: &'static FieldTable,
+        encoder: impl FnOnce() -> LineEncoder,
     ) -> Result<Option<Recorder>, Failure> {
         let (live, format) = (&common.live, &common.format);
         let clock = if live.port.is_some() {
@@ -292,6 +297,25 @@ impl Recorder {
         let Some(mut sink) = sink else {
             return Ok(None);
         };
+        #[cfg(feature = "cli-foxglove")]
+        let view = match (common.foxglove.foxglove, &live.port) {
+            #[cfg(feature = "cli-plot")]
+            (Some(_), _) if matches!(sink, Sink::Plot(_)) => {
+                return Err(Failure::Usage(
+                    "--foxglove serves a live decode: use it with robowire decode".to_owned(),
+                ))
+            }
+            (Some(addr), Some(port)) => Some(crate::foxglove::LiveView::start(
+                &common.foxglove,
+                addr,
+                fields.protocol,
+                (port, live.baud),
+                encoder(),
+            )?),
+            _ => None,
+        };
+        #[cfg(not(feature = "cli-foxglove"))]
+        let _ = encoder;
         let start_unix_ns = live
             .start
             .or_else(|| clock.as_ref().and_then(Clock::start_unix_ns));
@@ -361,6 +385,8 @@ impl Recorder {
             start_unix_ns: start_unix_ns.unwrap_or(0),
             topics: format.topics,
             topic: String::new(),
+            #[cfg(feature = "cli-foxglove")]
+            view,
         }))
     }
 
@@ -437,8 +463,12 @@ impl Recorder {
                 self.row.push_number("t", Seconds(us));
             }
             self.row.walk(event).map_err(bug)?;
-            return tables.write(&self.row);
+            tables.write(&self.row)?;
+            if !self.has_view() {
+                return Ok(());
+            }
         }
+        let channels = matches!(self.sink, Sink::Mcap(_)) || self.has_view();
         let text = &mut self.text;
         text.clear();
         serde_json::to_writer(&mut *text, event).map_err(bug)?;
@@ -452,6 +482,44 @@ impl Recorder {
             }
             text.extend_from_slice(&members);
         }
+        let kind = match channels.then(|| leading_kind(text, frame)) {
+            None => "",
+            Some(Some(kind)) => kind,
+            Some(None) => {
+                self.row.names_of(event).map_err(bug)?;
+                match self.row.type_name.as_str() {
+                    "" => "rejected",
+                    name => name,
+                }
+            }
+        };
+        // The time as printed (microseconds) after the start, in Unix
+        // nanoseconds; the event's index without times.
+        let nanoseconds = micros.map_or(index, |us| {
+            self.start_unix_ns.saturating_add(us.saturating_mul(1000))
+        });
+        let fields = self.fields;
+        let topic = &mut self.topic;
+        if channels {
+            topic.clear();
+            match self.topics {
+                Topics::Type => topic.extend(["/", kind]),
+                Topics::Entity => {
+                    topic.extend(["/", fields.protocol, "/", kind]);
+                    let entity = fields
+                        .entity_key(kind)
+                        .and_then(|key| top_level_number(text, key));
+                    if let Some(entity) = entity {
+                        topic.extend(["/", entity]);
+                    }
+                }
+            }
+        }
+        let schema = || channel_schema(event, kind, fields, seconds.is_some());
+        #[cfg(feature = "cli-foxglove")]
+        if let Some(view) = &mut self.view {
+            view.log(kind, topic, text, nanoseconds, schema)?;
+        }
         match &mut self.sink {
             Sink::Jsonl(file) => {
                 text.push(b'\n');
@@ -463,44 +531,19 @@ impl Recorder {
                     None => stdout.write_all(text).map_err(Failure::stdout),
                 }
             }
-            Sink::Mcap(recording) => {
-                let kind = match leading_kind(text, frame) {
-                    Some(kind) => kind,
-                    None => {
-                        self.row.names_of(event).map_err(bug)?;
-                        match self.row.type_name.as_str() {
-                            "" => "rejected",
-                            name => name,
-                        }
-                    }
-                };
-                // The time as printed (microseconds) after the start, in
-                // Unix nanoseconds.
-                let nanoseconds = micros.map_or(index, |us| {
-                    self.start_unix_ns.saturating_add(us.saturating_mul(1000))
-                });
-                let fields = self.fields;
-                let topic = &mut self.topic;
-                topic.clear();
-                match self.topics {
-                    Topics::Type => topic.extend(["/", kind]),
-                    Topics::Entity => {
-                        topic.extend(["/", fields.protocol, "/", kind]);
-                        let entity = fields
-                            .entity_key(kind)
-                            .and_then(|key| top_level_number(text, key));
-                        if let Some(entity) = entity {
-                            topic.extend(["/", entity]);
-                        }
-                    }
-                }
-                let schema = || channel_schema(event, kind, fields, seconds.is_some());
-                recording.write(kind, topic, text, nanoseconds, schema)
-            }
-            Sink::Csv(_) => unreachable!("CSV rows are written above"),
+            Sink::Mcap(recording) => recording.write(kind, topic, text, nanoseconds, schema),
+            Sink::Csv(_) => Ok(()),
             #[cfg(feature = "cli-plot")]
             Sink::Plot(_) => unreachable!("plot points are taken above"),
         }
+    }
+
+    /// Whether a live view is served.
+    fn has_view(&self) -> bool {
+        #[cfg(feature = "cli-foxglove")]
+        return self.view.is_some();
+        #[cfg(not(feature = "cli-foxglove"))]
+        false
     }
 
     /// Write out everything so far (before a read that may wait).
@@ -523,6 +566,10 @@ impl Recorder {
     pub fn finish(&mut self) -> Result<(), Failure> {
         let saved = self.pending.take().map_or(Ok(()), Err);
         let flushed = self.flush();
+        #[cfg(feature = "cli-foxglove")]
+        if let Some(view) = &mut self.view {
+            view.finish();
+        }
         let finished = match &mut self.sink {
             Sink::Mcap(recording) => recording.finish(),
             #[cfg(feature = "cli-plot")]

@@ -12,6 +12,8 @@ mod csv;
 mod driver;
 mod export;
 mod flatten;
+#[cfg(feature = "cli-foxglove")]
+mod foxglove;
 mod input;
 mod json_schema;
 mod mcap;

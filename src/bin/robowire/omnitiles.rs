@@ -171,14 +171,14 @@ where
         if hold {
             out.hold_for_spi();
         }
-        let mut printer = Printer::new(out, &args.common, <OmniTiles as Schema>::FIELDS)?;
+        let mut printer = Printer::new(out, &args.common, OmniTiles)?;
         return decode_datagrams(DatagramDecoder::new(framing), input, &mut printer);
     }
     let mut source = args.common.source()?;
     if hold {
         out.hold_for_spi();
     }
-    let mut printer = Printer::new(out, &args.common, <OmniTiles as Schema>::FIELDS)?;
+    let mut printer = Printer::new(out, &args.common, OmniTiles)?;
     // Every side's buffer is the same size.
     let decoder = StreamDecoder::<_, { omnitiles::BOTH_BUFFER }>::new(framing);
     let chunk = args.common.chunk as usize;
@@ -189,7 +189,7 @@ where
 /// `--chunk` bytes at a time (its events never depend on the chunking).
 fn run_firmware(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     let mut source = args.common.source()?;
-    let mut printer = Printer::new(out, &args.common, <OmniTiles as Schema>::FIELDS)?;
+    let mut printer = Printer::new(out, &args.common, OmniTiles)?;
     let mut parser = FirmwareParser::new();
     let mut buf = vec![0u8; args.common.chunk as usize];
     loop {

@@ -123,7 +123,7 @@ pub struct EncodeArgs {
 /// Run `decode pixy2`.
 pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     let mut source = args.common.source()?;
-    let mut printer = Printer::new(out, &args.common, <Pixy2 as Schema>::FIELDS)?;
+    let mut printer = Printer::new(out, &args.common, Pixy2)?;
     let source = source.as_mut();
     let chunk = args.common.chunk as usize;
     let only = args.checksum_only;

@@ -204,7 +204,13 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
         ));
     }
     let mut source = args.common.source()?;
-    let mut printer = Printer::new(out, &args.common, <Telemetrix as Schema>::FIELDS)?;
+    let mut printer = Printer::new(
+        out,
+        &args.common,
+        Telemetrix {
+            dialect: args.dialect,
+        },
+    )?;
     let chunk = args.common.chunk as usize;
     let source = source.as_mut();
     let (dialect, lenient) = (args.dialect, args.lenient);

@@ -1,0 +1,325 @@
+//! `decode --port --foxglove`: a WebSocket client speaking the Foxglove
+//! protocol (subprotocol `foxglove.sdk.v1`) against the tool on a pty pair.
+//! It sees the channels advertised with their schemas, subscribes, and gets
+//! message frames equal to the JSON lines; what it publishes back is
+//! written to the port only with `--allow-commands`, within the rate limit,
+//! and answered with a status message otherwise.
+
+#![cfg(all(feature = "cli-foxglove", unix))]
+
+mod cli_common;
+
+use cli_common::live::{finish, pty_pair, serial, signal, spawn, Running};
+use serde_json::{json, Value};
+use serialport::{SerialPort, TTYPort};
+use std::io::{BufRead, Read};
+use std::net::TcpStream;
+use std::time::{Duration, Instant};
+use tungstenite::client::IntoClientRequest;
+use tungstenite::http::HeaderValue;
+use tungstenite::stream::MaybeTlsStream;
+use tungstenite::{Message, WebSocket};
+
+type Socket = WebSocket<MaybeTlsStream<TcpStream>>;
+
+/// The tool on a pty, serving on a free port, and a client connected to it.
+struct Session {
+    master: TTYPort,
+    _slave: TTYPort,
+    running: Running,
+    socket: Socket,
+    /// The server's line on stderr.
+    banner: String,
+}
+
+fn start(extra: &[&str]) -> Session {
+    let (master, slave) = pty_pair();
+    let device = slave.name().unwrap();
+    let mut args = vec![
+        "decode",
+        "omnitiles",
+        "--port",
+        &device,
+        "--layout",
+        "ble53",
+        "--foxglove",
+        "0",
+    ];
+    args.extend_from_slice(extra);
+    let mut running = spawn(&args);
+    let mut banner = String::new();
+    running.stderr.read_line(&mut banner).unwrap();
+    let port = banner
+        .split("ws://127.0.0.1:")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|port| port.parse::<u16>().ok())
+        .unwrap_or_else(|| panic!("no server address in {banner:?}"));
+    let mut request = format!("ws://127.0.0.1:{port}")
+        .into_client_request()
+        .unwrap();
+    request.headers_mut().insert(
+        "sec-websocket-protocol",
+        HeaderValue::from_static("foxglove.sdk.v1"),
+    );
+    let (socket, response) = tungstenite::connect(request).unwrap();
+    assert_eq!(
+        response.headers()["sec-websocket-protocol"],
+        "foxglove.sdk.v1"
+    );
+    if let MaybeTlsStream::Plain(stream) = socket.get_ref() {
+        stream
+            .set_read_timeout(Some(Duration::from_secs(10)))
+            .unwrap();
+    }
+    let mut session = Session {
+        master,
+        _slave: slave,
+        running,
+        socket,
+        banner,
+    };
+    let info = session.next_op("serverInfo");
+    let capabilities = info["capabilities"].as_array().unwrap();
+    assert!(capabilities.contains(&json!("clientPublish")), "{info}");
+    session
+}
+
+impl Session {
+    /// The next text message whose `op` is `op`, skipping others.
+    fn next_op(&mut self, op: &str) -> Value {
+        loop {
+            match self.socket.read().unwrap() {
+                Message::Text(text) => {
+                    let value: Value = serde_json::from_str(&text).unwrap();
+                    if value["op"] == op {
+                        return value;
+                    }
+                }
+                Message::Binary(_) | Message::Ping(_) | Message::Pong(_) => {}
+                other => panic!("unexpected {other:?} while waiting for {op}"),
+            }
+        }
+    }
+
+    /// The next message-data frame: subscription id, log time, payload.
+    fn next_message(&mut self) -> (u32, u64, Vec<u8>) {
+        loop {
+            if let Message::Binary(data) = self.socket.read().unwrap() {
+                assert_eq!(data[0], 0x01, "opcode MessageData");
+                let id = u32::from_le_bytes(data[1..5].try_into().unwrap());
+                let time = u64::from_le_bytes(data[5..13].try_into().unwrap());
+                return (id, time, data[13..].to_vec());
+            }
+        }
+    }
+
+    fn send(&mut self, value: Value) {
+        self.socket
+            .send(Message::Text(value.to_string().into()))
+            .unwrap();
+    }
+
+    /// Advertise `topic` as client channel 7 and publish `payload` on it.
+    fn advertise(&mut self, topic: &str) {
+        self.send(json!({"op": "advertise", "channels": [
+            {"id": 7, "topic": topic, "encoding": "json", "schemaName": "robowire.command"}
+        ]}));
+    }
+
+    fn publish(&mut self, payload: &str) {
+        let mut frame = vec![0x01];
+        frame.extend_from_slice(&7u32.to_le_bytes());
+        frame.extend_from_slice(payload.as_bytes());
+        self.socket.send(Message::Binary(frame.into())).unwrap();
+    }
+
+    /// Bytes that arrive on the master end within `wait`.
+    fn written(&mut self, wait: Duration) -> Vec<u8> {
+        self.master.set_timeout(Duration::from_millis(100)).unwrap();
+        let deadline = Instant::now() + wait;
+        let mut bytes = Vec::new();
+        let mut buf = [0u8; 256];
+        while Instant::now() < deadline {
+            match self.master.read(&mut buf) {
+                Ok(n) => bytes.extend_from_slice(&buf[..n]),
+                Err(e) if e.kind() == std::io::ErrorKind::TimedOut => {}
+                Err(e) => panic!("{e}"),
+            }
+        }
+        bytes
+    }
+
+    /// SIGTERM, then the exit status, stdout and the rest of stderr.
+    fn stop(mut self) -> (Option<i32>, String, String) {
+        let _ = self.socket.close(None);
+        signal(&self.running.child, "TERM");
+        finish(self.running)
+    }
+}
+
+fn telemetry() -> Vec<u8> {
+    std::fs::read(cli_common::data("ble_telemetry.bin")).unwrap()
+}
+
+#[test]
+fn a_client_sees_the_channels_and_frames_equal_to_the_json_lines() {
+    let _one = serial();
+    let mut session = start(&[]);
+    assert!(
+        session.banner.contains("(commands off)"),
+        "{}",
+        session.banner
+    );
+    let frames = telemetry();
+    let (first, rest) = frames.split_at(53 * 3);
+    std::io::Write::write_all(&mut session.master, first).unwrap();
+    let advertised = session.next_op("advertise");
+    let channel = &advertised["channels"][0];
+    assert_eq!(channel["topic"], "/omnitiles/telemetry", "{advertised}");
+    assert_eq!(channel["encoding"], "json");
+    assert_eq!(channel["schemaName"], "telemetry");
+    assert_eq!(channel["schemaEncoding"], "jsonschema");
+    let schema: Value = serde_json::from_str(channel["schema"].as_str().unwrap()).unwrap();
+    assert_eq!(
+        schema["properties"]["m1_pos"]["unit"], "ADC counts",
+        "{schema}"
+    );
+    session.send(json!({"op": "subscribe", "subscriptions": [
+        {"id": 3, "channelId": channel["id"]}
+    ]}));
+    std::thread::sleep(Duration::from_millis(300));
+    let sent = &rest[..53 * 20];
+    std::io::Write::write_all(&mut session.master, sent).unwrap();
+    let received: Vec<_> = (0..20).map(|_| session.next_message()).collect();
+    std::thread::sleep(Duration::from_millis(200));
+    let (code, stdout, _) = session.stop();
+    assert_eq!(code, Some(0));
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines.len(), 23);
+    for ((id, log_time, payload), line) in received.iter().zip(&lines[3..]) {
+        assert_eq!(*id, 3);
+        assert_eq!(std::str::from_utf8(payload).unwrap(), *line);
+        // Unix-time log times (the MCAP's), apart as the lines' "t" are.
+        assert!(*log_time > 1_600_000_000_000_000_000, "{log_time}");
+        assert_eq!((log_time - received[0].1) % 1000, 0);
+    }
+    let t = |line: &str| {
+        serde_json::from_str::<Value>(line).unwrap()["t"]
+            .as_f64()
+            .unwrap()
+    };
+    let (t0, t19) = (t(lines[3]), t(lines[22]));
+    let span = (received[19].1 - received[0].1) as f64 / 1e9;
+    assert!((span - (t19 - t0)).abs() < 1e-9, "{span} vs {}", t19 - t0);
+}
+
+#[test]
+fn a_publish_is_refused_while_commands_are_off() {
+    let _one = serial();
+    let mut session = start(&[]);
+    session.advertise("/omnitiles/command");
+    session.publish(r#"{"type":"m1_extend","speed":100}"#);
+    let status = session.next_op("status");
+    assert_eq!(status["level"], 2, "an error: {status}");
+    let message = status["message"].as_str().unwrap();
+    assert!(message.contains("--allow-commands"), "{message}");
+    assert!(session.written(Duration::from_millis(500)).is_empty());
+    let (code, _, stderr) = session.stop();
+    assert_eq!(code, Some(0));
+    assert!(
+        stderr.contains("0 commands written to the port, 1 refused"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn commands_back_are_encoded_and_written_and_bad_ones_answered() {
+    let _one = serial();
+    let mut session = start(&["--allow-commands"]);
+    assert!(
+        session.banner.contains("commands on /omnitiles/command"),
+        "{}",
+        session.banner
+    );
+    session.advertise("/omnitiles/command");
+    session.publish(r#"{"type":"m1_extend","speed":100}"#);
+    assert_eq!(
+        session.written(Duration::from_millis(500)),
+        [0xa5, 0x30, 0x64, 0x94]
+    );
+    // Not a message of the protocol, not JSON: a status each, nothing written.
+    session.publish(r#"{"type":"m1_extend","speed":300}"#);
+    let status = session.next_op("status");
+    assert_eq!(status["level"], 2, "{status}");
+    assert!(
+        status["message"]
+            .as_str()
+            .unwrap()
+            .contains("not a command"),
+        "{status}"
+    );
+    session.publish("{not json");
+    let status = session.next_op("status");
+    assert!(
+        status["message"]
+            .as_str()
+            .unwrap()
+            .contains("not valid JSON"),
+        "{status}"
+    );
+    assert!(session.written(Duration::from_millis(300)).is_empty());
+    let (code, _, stderr) = session.stop();
+    assert_eq!(code, Some(0));
+    assert!(
+        stderr.contains("1 commands written to the port, 2 refused"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn commands_on_another_topic_or_over_the_rate_are_not_written() {
+    let _one = serial();
+    let mut session = start(&["--allow-commands", "--command-rate", "2"]);
+    session.advertise("/cmd_vel");
+    session.publish(r#"{"type":"m1_extend","speed":100}"#);
+    let status = session.next_op("status");
+    assert!(
+        status["message"]
+            .as_str()
+            .unwrap()
+            .contains("commands on /omnitiles/command only"),
+        "{status}"
+    );
+    session.send(json!({"op": "unadvertise", "channelIds": [7]}));
+    session.advertise("/omnitiles/command");
+    for _ in 0..5 {
+        session.publish(r#"{"type":"m1_extend","speed":100}"#);
+    }
+    let status = session.next_op("status");
+    assert_eq!(status["level"], 1, "a warning: {status}");
+    assert!(
+        status["message"]
+            .as_str()
+            .unwrap()
+            .contains("--command-rate"),
+        "{status}"
+    );
+    // The burst of two went out; the other three did not.
+    assert_eq!(
+        session.written(Duration::from_millis(500)),
+        [0xa5, 0x30, 0x64, 0x94].repeat(2)
+    );
+    let (code, _, _) = session.stop();
+    assert_eq!(code, Some(0));
+}
+
+#[test]
+fn commands_need_the_server_and_the_server_needs_a_port() {
+    let out = cli_common::run(&["decode", "omnitiles", "--foxglove"], &telemetry());
+    assert_eq!(out.code, 2, "{}", out.stderr);
+    assert!(out.stderr.contains("--port"), "{}", out.stderr);
+    let out = cli_common::run(&["decode", "omnitiles", "--allow-commands"], b"");
+    assert_eq!(out.code, 2, "{}", out.stderr);
+    assert!(out.stderr.contains("--foxglove"), "{}", out.stderr);
+}
