@@ -102,6 +102,13 @@ impl Session {
         }
     }
 
+    /// The next status message: its level (0 info, 1 warning, 2 error) and text.
+    fn status(&mut self) -> (u64, String) {
+        let status = self.next_op("status");
+        let level = status["level"].as_u64().unwrap();
+        (level, status["message"].as_str().unwrap().to_owned())
+    }
+
     /// The next message-data frame: subscription id, log time, payload.
     fn next_message(&mut self) -> (u32, u64, Vec<u8>) {
         loop {
@@ -120,13 +127,14 @@ impl Session {
             .unwrap();
     }
 
-    /// Advertise `topic` as client channel 7 and publish `payload` on it.
+    /// Advertise `topic` as client channel 7 (JSON).
     fn advertise(&mut self, topic: &str) {
         self.send(json!({"op": "advertise", "channels": [
             {"id": 7, "topic": topic, "encoding": "json", "schemaName": "robowire.command"}
         ]}));
     }
 
+    /// Publish `payload` on client channel 7.
     fn publish(&mut self, payload: &str) {
         let mut frame = vec![0x01];
         frame.extend_from_slice(&7u32.to_le_bytes());
@@ -220,9 +228,8 @@ fn a_publish_is_refused_while_commands_are_off() {
     let mut session = start(&[]);
     session.advertise("/omnitiles/command");
     session.publish(r#"{"type":"m1_extend","speed":100}"#);
-    let status = session.next_op("status");
-    assert_eq!(status["level"], 2, "an error: {status}");
-    let message = status["message"].as_str().unwrap();
+    let (level, message) = session.status();
+    assert_eq!(level, 2, "an error: {message}");
     assert!(message.contains("--allow-commands"), "{message}");
     assert!(session.written(Duration::from_millis(500)).is_empty());
     let (code, _, stderr) = session.stop();
@@ -250,24 +257,12 @@ fn commands_back_are_encoded_and_written_and_bad_ones_answered() {
     );
     // Not a message of the protocol, not JSON: a status each, nothing written.
     session.publish(r#"{"type":"m1_extend","speed":300}"#);
-    let status = session.next_op("status");
-    assert_eq!(status["level"], 2, "{status}");
-    assert!(
-        status["message"]
-            .as_str()
-            .unwrap()
-            .contains("not a command"),
-        "{status}"
-    );
+    let (level, message) = session.status();
+    assert_eq!(level, 2, "{message}");
+    assert!(message.contains("not a command"), "{message}");
     session.publish("{not json");
-    let status = session.next_op("status");
-    assert!(
-        status["message"]
-            .as_str()
-            .unwrap()
-            .contains("not valid JSON"),
-        "{status}"
-    );
+    let (_, message) = session.status();
+    assert!(message.contains("not valid JSON"), "{message}");
     assert!(session.written(Duration::from_millis(300)).is_empty());
     let (code, _, stderr) = session.stop();
     assert_eq!(code, Some(0));
@@ -283,28 +278,19 @@ fn commands_on_another_topic_or_over_the_rate_are_not_written() {
     let mut session = start(&["--allow-commands", "--command-rate", "2"]);
     session.advertise("/cmd_vel");
     session.publish(r#"{"type":"m1_extend","speed":100}"#);
-    let status = session.next_op("status");
+    let (_, message) = session.status();
     assert!(
-        status["message"]
-            .as_str()
-            .unwrap()
-            .contains("commands on /omnitiles/command only"),
-        "{status}"
+        message.contains("commands on /omnitiles/command only"),
+        "{message}"
     );
     session.send(json!({"op": "unadvertise", "channelIds": [7]}));
     session.advertise("/omnitiles/command");
     for _ in 0..5 {
         session.publish(r#"{"type":"m1_extend","speed":100}"#);
     }
-    let status = session.next_op("status");
-    assert_eq!(status["level"], 1, "a warning: {status}");
-    assert!(
-        status["message"]
-            .as_str()
-            .unwrap()
-            .contains("--command-rate"),
-        "{status}"
-    );
+    let (level, message) = session.status();
+    assert_eq!(level, 1, "a warning: {message}");
+    assert!(message.contains("--command-rate"), "{message}");
     // The burst of two went out; the other three did not.
     assert_eq!(
         session.written(Duration::from_millis(500)),

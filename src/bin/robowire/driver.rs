@@ -537,11 +537,7 @@ pub fn encode_lines<P: Schema>(
             continue;
         }
         frame.clear();
-        let read = read_line::<P::Line>(line).and_then(|line| {
-            line.map_or(Ok(()), |line| protocol.encode(&line, &mut frame))
-                .map_err(|message| (None, message))
-        });
-        match read {
+        match encode_line(protocol, line, &mut frame) {
             Ok(()) if frame.is_empty() => continue,
             Ok(()) => {}
             Err((column, message)) => {
@@ -572,6 +568,21 @@ pub fn encode_lines<P: Schema>(
     Ok(())
 }
 
+/// Append the frame of one JSON line to `frame`: nothing for a diagnostic
+/// event. The error has the column where the text went wrong, if it did.
+fn encode_line<P: Schema>(
+    protocol: &P,
+    line: &[u8],
+    frame: &mut Vec<u8>,
+) -> Result<(), (Option<usize>, String)> {
+    match read_line::<P::Line>(line)? {
+        Some(line) => protocol
+            .encode(&line, frame)
+            .map_err(|message| (None, message)),
+        None => Ok(()),
+    }
+}
+
 /// Turns one JSON line into the bytes of its frame, or says why it cannot.
 pub type LineEncoder = Box<dyn Fn(&[u8]) -> Result<Vec<u8>, String> + Send + Sync>;
 
@@ -579,16 +590,13 @@ pub type LineEncoder = Box<dyn Fn(&[u8]) -> Result<Vec<u8>, String> + Send + Syn
 /// command published back from a live view goes through.
 pub fn line_encoder<P: Schema + Send + Sync + 'static>(protocol: P) -> LineEncoder {
     Box::new(move |line| {
-        let line = match read_line::<P::Line>(line) {
-            Ok(Some(line)) => line,
-            Ok(None) => return Err("a diagnostic event (error, no type) is no message".to_owned()),
-            Err((Some(column), message)) => return Err(format!("column {column}: {message}")),
-            Err((None, message)) => return Err(message),
-        };
         let mut frame = Vec::new();
-        protocol.encode(&line, &mut frame)?;
+        encode_line(&protocol, line, &mut frame).map_err(|(column, message)| match column {
+            Some(column) => format!("column {column}: {message}"),
+            None => message,
+        })?;
         if frame.is_empty() {
-            return Err("the message has no bytes of its own to write".to_owned());
+            return Err("a diagnostic event (error, no type) has no bytes to write".to_owned());
         }
         Ok(frame)
     })

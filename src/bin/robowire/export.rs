@@ -501,21 +501,14 @@ impl Recorder {
         let fields = self.fields;
         let topic = &mut self.topic;
         if channels {
-            topic.clear();
-            match self.topics {
-                Topics::Type => topic.extend(["/", kind]),
-                Topics::Entity => {
-                    topic.extend(["/", fields.protocol, "/", kind]);
-                    let entity = fields
-                        .entity_key(kind)
-                        .and_then(|key| top_level_number(text, key));
-                    if let Some(entity) = entity {
-                        topic.extend(["/", entity]);
-                    }
-                }
-            }
+            channel_topic(topic, self.topics, fields, kind, text);
         }
-        let schema = || channel_schema(event, kind, fields, seconds.is_some());
+        // The channel's JSON Schema, the first time a sink needs it.
+        let schema = || {
+            let schema = channel_schema(event, kind, fields, seconds.is_some())
+                .map_err(|e| Failure::Reported(format!("cannot describe a frame: {e}")))?;
+            Ok(serde_json::to_vec(&schema).expect("a JSON value serializes"))
+        };
         #[cfg(feature = "cli-foxglove")]
         if let Some(view) = &mut self.view {
             view.log(kind, topic, text, nanoseconds, schema)?;
@@ -577,6 +570,25 @@ impl Recorder {
             _ => Ok(()),
         };
         saved.and(flushed).and(finished)
+    }
+}
+
+/// Set `topic` to the channel of an event of type `kind` printed as `json`:
+/// `/TYPE`, or `/PROTOCOL/TYPE` with `/ENTITY` after it for a type that
+/// belongs to a pin, sensor or module.
+fn channel_topic(topic: &mut String, topics: Topics, fields: &FieldTable, kind: &str, json: &[u8]) {
+    topic.clear();
+    match topics {
+        Topics::Type => topic.extend(["/", kind]),
+        Topics::Entity => {
+            topic.extend(["/", fields.protocol, "/", kind]);
+            let entity = fields
+                .entity_key(kind)
+                .and_then(|key| top_level_number(json, key));
+            if let Some(entity) = entity {
+                topic.extend(["/", entity]);
+            }
+        }
     }
 }
 

@@ -18,7 +18,6 @@ use crate::Failure;
 use clap::Args;
 use foxglove::websocket::{Capability, Client, ClientChannel, ServerListener, Status};
 use foxglove::{Context, PartialMetadata, RawChannel, Schema, WebSocketServerHandle};
-use serde_json::Value;
 use std::collections::HashMap;
 use std::io::Write;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
@@ -155,21 +154,19 @@ impl LiveView {
     }
 
     /// Send `json` on `topic` at `nanoseconds` to the clients subscribed to
-    /// it; `schema` gives the channel's JSON Schema when it is the first.
+    /// it; `schema` gives the channel's JSON Schema (its bytes) when it is the first.
     pub fn log(
         &mut self,
         kind: &str,
         topic: &str,
         json: &[u8],
         nanoseconds: u64,
-        schema: impl FnOnce() -> Result<Value, String>,
+        schema: impl FnOnce() -> Result<Vec<u8>, Failure>,
     ) -> Result<(), Failure> {
         let channel = match self.channels.get(topic) {
             Some(channel) => channel,
             None => {
-                let schema = schema()
-                    .map_err(|e| Failure::Reported(format!("cannot describe a frame: {e}")))?;
-                let schema = serde_json::to_vec(&schema).expect("a JSON value serializes");
+                let schema = schema()?;
                 let channel = self
                     .context
                     .channel_builder(topic)

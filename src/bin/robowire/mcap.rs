@@ -14,7 +14,6 @@
 use crate::Failure;
 use mcap::records::MessageHeader;
 use mcap::write::{NoSeek, WriteOptions, Writer};
-use serde_json::Value;
 use std::collections::{BTreeMap, HashMap};
 use std::io::{self, Write};
 use std::time::{Duration, Instant};
@@ -65,14 +64,14 @@ impl Recording {
 
     /// Record `json` (one JSON object: a frame, or a rejection when `kind`
     /// is `rejected`) on `topic` at `nanoseconds`; `schema` gives the JSON
-    /// Schema of its channel when it is the first on it.
+    /// Schema of its channel (its bytes) when it is the first on it.
     pub fn write(
         &mut self,
         kind: &str,
         topic: &str,
         json: &[u8],
         nanoseconds: u64,
-        schema: impl FnOnce() -> Result<Value, String>,
+        schema: impl FnOnce() -> Result<Vec<u8>, Failure>,
     ) -> Result<(), Failure> {
         let Some(writer) = self.writer.as_mut() else {
             return Ok(());
@@ -80,9 +79,7 @@ impl Recording {
         let (channel, sequence) = match self.channels.get_mut(topic) {
             Some(entry) => entry,
             None => {
-                let schema = schema()
-                    .map_err(|e| Failure::Reported(format!("cannot describe a frame: {e}")))?;
-                let schema = serde_json::to_vec(&schema).expect("a JSON value serializes");
+                let schema = schema()?;
                 let schema_id = writer
                     .add_schema(kind, "jsonschema", &schema)
                     .map_err(|error| failure(&self.name, error))?;
