@@ -159,6 +159,9 @@ pub struct FieldInfo {
     /// Names the thing the message is about (a pin, a sensor, a module):
     /// the tool gives each its own topic (`/telemetrix/analog_report/26`).
     pub entity: bool,
+    /// A list whose elements are the things the frame reports (a Pixy2
+    /// frame's blocks): the tool's CSV gives each element a row of its own.
+    pub rows: bool,
 }
 
 impl FieldInfo {
@@ -174,6 +177,7 @@ impl FieldInfo {
             optional: false,
             by_type: false,
             entity: false,
+            rows: false,
         }
     }
 
@@ -220,6 +224,12 @@ impl FieldInfo {
         self
     }
 
+    /// A list of the things the frame reports, a row each in a table.
+    pub const fn rows(mut self) -> FieldInfo {
+        self.rows = true;
+        self
+    }
+
     /// Carried by some frames only.
     pub const fn optional(mut self) -> FieldInfo {
         self.optional = true;
@@ -262,6 +272,20 @@ impl FieldTable {
         self.entries
             .iter()
             .find(|(m, _, info)| *m == message && info.entity)
+            .map(|(_, path, _)| *path)
+    }
+
+    /// The lists of a `message` whose elements are the things it reports
+    /// (each a [`FieldInfo::rows`] path, `*` for an array index).
+    ///
+    /// ```
+    /// let lists: Vec<_> = robowire::pixy2::FIELD_INFO.row_lists("features").collect();
+    /// assert_eq!(lists, ["sections.*.vectors", "sections.*.intersections", "sections.*.barcodes"]);
+    /// ```
+    pub fn row_lists<'a>(&'a self, message: &'a str) -> impl Iterator<Item = &'static str> + 'a {
+        self.entries
+            .iter()
+            .filter(move |(m, _, info)| *m == message && info.rows)
             .map(|(_, path, _)| *path)
     }
 }

@@ -6,7 +6,7 @@
 
 mod cli_common;
 
-use cli_common::{data_arg, run, scratch};
+use cli_common::{data, data_arg, run, scratch};
 use serde_json::Value;
 use std::collections::HashMap;
 use std::path::Path;
@@ -235,6 +235,123 @@ fn csv_keeps_nested_fields_in_serde_order_and_nulls_empty() {
     );
     let first = reader.records().next().unwrap().unwrap();
     assert_eq!(&first[9], "", "uwb[3] is null in the first frame");
+}
+
+/// Every row of the tables in `dir` whose name starts with `prefix`, by the
+/// `frame` they belong to, each as its column → cell map.
+fn rows_by_frame(dir: &Path, prefix: &str) -> HashMap<u64, Vec<HashMap<String, String>>> {
+    let mut rows: HashMap<u64, Vec<HashMap<String, String>>> = HashMap::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let stem = path.file_stem().unwrap().to_str().unwrap();
+        let table = stem.rsplit_once('-').map_or(stem, |(table, _)| table);
+        if table != prefix {
+            continue;
+        }
+        let mut reader = csv::Reader::from_path(&path).unwrap();
+        let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+        for record in reader.records() {
+            let row: HashMap<String, String> = header
+                .iter()
+                .cloned()
+                .zip(record.unwrap().iter().map(String::from))
+                .collect();
+            rows.entry(row["frame"].parse().unwrap())
+                .or_default()
+                .push(row);
+        }
+    }
+    for frame in rows.values_mut() {
+        frame.sort_by_key(|row| row["element"].parse::<u64>().ok());
+    }
+    rows
+}
+
+#[test]
+fn pixy2_lists_are_a_row_per_element_with_the_frame_index() {
+    let dir = scratch("export-csv-pixy2");
+    // The sample conversation, then a frame with no blocks and one with no features.
+    let mut capture = std::fs::read_to_string(data("pixy2_conversation.hex")).unwrap();
+    capture.push_str("af c1 21 00 00 00\naf c1 31 00 00 00\n");
+    let input = dir.join("conversation.hex");
+    std::fs::write(&input, capture).unwrap();
+    let input = input.to_str().unwrap();
+    let tables = dir.join("tables");
+    let args = ["decode", "pixy2", "--hex", "--format", "csv", "-o"];
+    let out = run(
+        &[&args[..], &[tables.to_str().unwrap(), input]].concat(),
+        b"",
+    );
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let lines = run(&["decode", "pixy2", "--hex", input], b"").json();
+    let blocks = rows_by_frame(&tables, "blocks");
+    let lists = ["vectors", "intersections", "barcodes"]
+        .map(|list| (list, rows_by_frame(&tables, &format!("features_{list}"))));
+    let mut seen = [0; 2];
+    for (frame, line) in lines.iter().enumerate() {
+        let frame = frame as u64;
+        // The frame's elements of each list, in wire order.
+        let elements: Vec<(&HashMap<u64, _>, Vec<&Value>)> = match line["type"].as_str() {
+            Some("blocks") => {
+                seen[0] += 1;
+                vec![(&blocks, line["blocks"].as_array().unwrap().iter().collect())]
+            }
+            Some("features") => {
+                seen[1] += 1;
+                let sections = line["sections"].as_array().unwrap();
+                lists
+                    .iter()
+                    .map(|(list, rows)| {
+                        (
+                            rows,
+                            sections
+                                .iter()
+                                .filter_map(|s| s.get(list))
+                                .flat_map(|l| l.as_array().unwrap())
+                                .collect(),
+                        )
+                    })
+                    .collect()
+            }
+            _ => {
+                assert!(!blocks.contains_key(&frame), "{line}");
+                continue;
+            }
+        };
+        for (rows, elements) in elements {
+            let rows = &rows[&frame];
+            assert_eq!(rows.len(), elements.len().max(1), "{line}");
+            for row in rows {
+                assert_eq!(row["offset"], line["offset"].to_string(), "{line}");
+                assert_eq!(row["type"], line["type"].as_str().unwrap());
+            }
+            if elements.is_empty() {
+                assert!(
+                    rows[0].iter().all(|(column, cell)| cell.is_empty()
+                        || ["frame", "offset", "len", "type", "checksum"]
+                            .contains(&column.as_str())),
+                    "{rows:?}"
+                );
+            }
+            for (i, (row, element)) in rows.iter().zip(elements).enumerate() {
+                assert_eq!(row["element"], i.to_string());
+                let mut fields = Vec::new();
+                flatten("", element, &mut fields);
+                for (name, value) in fields {
+                    assert!(
+                        same_cell(&row[&name], &value),
+                        "{line}: {name} = {}",
+                        row[&name]
+                    );
+                }
+            }
+        }
+    }
+    assert_eq!(seen, [7, 7], "the sample's and the added frames");
+    assert_eq!(blocks[&(lines.len() as u64 - 2)][0]["element"], "");
+    let units = std::fs::read_to_string(tables.join("units.csv")).unwrap();
+    assert!(units.contains("blocks,x,px,Centre column."), "{units}");
+    assert!(units.contains("features_vectors,x0,grid cells,"), "{units}");
 }
 
 #[test]

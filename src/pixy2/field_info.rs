@@ -173,7 +173,7 @@ pub static FIELD_INFO: FieldTable = FieldTable {
         (
             "blocks",
             "blocks",
-            FieldInfo::new("The blocks detected, largest first."),
+            FieldInfo::new("The blocks detected, largest first.").rows(),
         ),
         (
             "blocks",
@@ -207,7 +207,7 @@ pub static FIELD_INFO: FieldTable = FieldTable {
         (
             "features",
             "sections.*.vectors",
-            FieldInfo::new("Line vectors.").optional(),
+            FieldInfo::new("Line vectors.").optional().rows(),
         ),
         ("features", "sections.*.vectors.*.x0", cell("Tail column.")),
         ("features", "sections.*.vectors.*.y0", cell("Tail row.")),
@@ -226,7 +226,7 @@ pub static FIELD_INFO: FieldTable = FieldTable {
         (
             "features",
             "sections.*.intersections",
-            FieldInfo::new("Intersections.").optional(),
+            FieldInfo::new("Intersections.").optional().rows(),
         ),
         ("features", "sections.*.intersections.*.x", cell("Column.")),
         ("features", "sections.*.intersections.*.y", cell("Row.")),
@@ -264,7 +264,7 @@ pub static FIELD_INFO: FieldTable = FieldTable {
         (
             "features",
             "sections.*.barcodes",
-            FieldInfo::new("Barcodes.").optional(),
+            FieldInfo::new("Barcodes.").optional().rows(),
         ),
         ("features", "sections.*.barcodes.*.x", cell("Column.")),
         ("features", "sections.*.barcodes.*.y", cell("Row.")),

@@ -218,6 +218,8 @@ pub struct Recorder {
     /// Rejections among them.
     #[cfg(feature = "cli-plot")]
     rejections: u64,
+    /// Frames written so far.
+    frames: u64,
     row: Row,
     text: Vec<u8>,
     /// A failure to save bytes, reported with the next event.
@@ -378,6 +380,7 @@ impl Recorder {
             events: 0,
             #[cfg(feature = "cli-plot")]
             rejections: 0,
+            frames: 0,
             row: Row::default(),
             text: Vec::with_capacity(256),
             pending: None,
@@ -443,6 +446,8 @@ impl Recorder {
         let seconds = micros.map(|us| us as f64 / 1e6);
         let index = self.events;
         self.events += 1;
+        let frame_number = self.frames;
+        self.frames += u64::from(frame);
         #[cfg(feature = "cli-plot")]
         if let Sink::Plot(plot) = &mut self.sink {
             // The x axis: the receive time, or the number of frames before.
@@ -463,7 +468,7 @@ impl Recorder {
                 self.row.push_number("t", Seconds(us));
             }
             self.row.walk(event).map_err(bug)?;
-            tables.write(&self.row)?;
+            tables.write(&self.row, frame_number)?;
             if !self.has_view() {
                 return Ok(());
             }

@@ -10,7 +10,7 @@ use std::fmt::{self, Write as _};
 /// One flattened value: the column names and the cells, each joined by
 /// commas and CSV-quoted where needed, and the value's kind (its top-level
 /// `type`, or `rejected-` and its `error`).
-#[derive(Default)]
+#[derive(Default, Clone)]
 pub struct Row {
     /// The header line: column names joined by commas.
     pub names: String,
@@ -48,6 +48,22 @@ impl Row {
             let _ = write!(cells, "{value}");
         });
         self.path = saved;
+    }
+
+    /// Add a cell named `name` holding `cell`, CSV text as [`cells`](Row::cells)
+    /// holds it (quoted where needed).
+    pub fn push_cell(&mut self, name: &str, cell: &[u8]) {
+        let saved = std::mem::replace(&mut self.path, name.to_owned());
+        self.cells_wanted = true;
+        self.cell_with(|cells| cells.extend_from_slice(cell));
+        self.path = saved;
+    }
+
+    /// Each cell, as CSV text, in column order.
+    pub fn cell_texts(&self) -> impl Iterator<Item = &[u8]> + '_ {
+        self.spans
+            .iter()
+            .map(|&(start, end)| &self.cells[start..end])
     }
 
     /// Walk `value` into the row, after any cells already pushed.
@@ -91,22 +107,7 @@ impl Row {
 
     /// The column names, unquoted.
     pub fn columns(&self) -> Vec<String> {
-        let mut columns = vec![String::new()];
-        let mut quoted = false;
-        let mut chars = self.names.chars().peekable();
-        while let Some(c) = chars.next() {
-            let column = columns.last_mut().expect("one column at least");
-            match c {
-                '"' if quoted && chars.peek() == Some(&'"') => {
-                    chars.next();
-                    column.push('"');
-                }
-                '"' => quoted = !quoted,
-                ',' if !quoted => columns.push(String::new()),
-                c => column.push(c),
-            }
-        }
-        columns
+        columns(&self.names)
     }
 
     /// The cell of the column `name`, as CSV text, if the row has it.
@@ -148,6 +149,26 @@ impl Row {
             });
         }
     }
+}
+
+/// The column names of header line `names`, unquoted.
+pub fn columns(names: &str) -> Vec<String> {
+    let mut columns = vec![String::new()];
+    let mut quoted = false;
+    let mut chars = names.chars().peekable();
+    while let Some(c) = chars.next() {
+        let column = columns.last_mut().expect("one column at least");
+        match c {
+            '"' if quoted && chars.peek() == Some(&'"') => {
+                chars.next();
+                column.push('"');
+            }
+            '"' => quoted = !quoted,
+            ',' if !quoted => columns.push(String::new()),
+            c => column.push(c),
+        }
+    }
+    columns
 }
 
 /// `text` as a CSV field: quoted when it must be.
