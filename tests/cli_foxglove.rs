@@ -263,11 +263,16 @@ fn commands_back_are_encoded_and_written_and_bad_ones_answered() {
     session.publish("{not json");
     let (_, message) = session.status();
     assert!(message.contains("not valid JSON"), "{message}");
+    // Telemetry is what the tile sends: a valid message, but not a command.
+    session.publish(r#"{"type":"telemetry","layout":"pos7","m1_pos":100,"m2_pos":200}"#);
+    let (level, message) = session.status();
+    assert_eq!(level, 2, "{message}");
+    assert!(message.contains("a message the device sends"), "{message}");
     assert!(session.written(Duration::from_millis(300)).is_empty());
     let (code, _, stderr) = session.stop();
     assert_eq!(code, Some(0));
     assert!(
-        stderr.contains("1 commands written to the port, 2 refused"),
+        stderr.contains("1 commands written to the port, 3 refused"),
         "{stderr}"
     );
 }

@@ -32,6 +32,19 @@ pub trait Schema {
 
     /// Append the frame of `line` to `frame`; the error names the problem.
     fn encode(&self, line: &Self::Line, frame: &mut Vec<u8>) -> Result<(), String>;
+
+    /// Who sends `line`'s message on the wire (`None`: it is no message).
+    fn sent_by(&self, line: &Self::Line) -> Option<Peer>;
+}
+
+/// One end of a link: the host (commands, requests) or the device
+/// (telemetry, responses, reports).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Peer {
+    /// The computer that sends commands and requests.
+    Host,
+    /// The tile, camera or board that answers.
+    Device,
 }
 
 /// Options every `decode` subcommand shares.
@@ -266,18 +279,21 @@ impl<'o> Printer<'o> {
     /// A printer writing to `out` in the format `common` asks for;
     /// rejections are printed with `--errors`. `protocol` describes its
     /// fields to the recording's schemas and encodes the commands a live
-    /// view takes back.
+    /// view takes back: messages `writes` sends, the other end from the
+    /// one decoded (the host's, unless the decode reads a host's bytes).
     pub fn new<P: Schema + Send + Sync + 'static>(
         out: &'o mut Output,
         common: &DecodeCommon,
         protocol: P,
+        writes: Peer,
     ) -> Result<Self, Failure> {
         let plot = out.plot.take();
         common
             .format
             .refuse_overwrite(common.live.save.as_deref())?;
         if !out.judging {
-            out.recorder = Recorder::new(common, plot, P::FIELDS, || line_encoder(protocol))?;
+            out.recorder =
+                Recorder::new(common, plot, P::FIELDS, || line_encoder(protocol, writes))?;
         }
         Ok(Printer {
             out,
@@ -537,7 +553,7 @@ pub fn encode_lines<P: Schema>(
             continue;
         }
         frame.clear();
-        match encode_line(protocol, line, &mut frame) {
+        match encode_line(protocol, line, &mut frame, None) {
             Ok(()) if frame.is_empty() => continue,
             Ok(()) => {}
             Err((column, message)) => {
@@ -569,31 +585,51 @@ pub fn encode_lines<P: Schema>(
 }
 
 /// Append the frame of one JSON line to `frame`: nothing for a diagnostic
-/// event. The error has the column where the text went wrong, if it did.
+/// event; with `only`, an error for a message another end sends. The error
+/// has the column where the text went wrong, if it did.
 fn encode_line<P: Schema>(
     protocol: &P,
     line: &[u8],
     frame: &mut Vec<u8>,
+    only: Option<Peer>,
 ) -> Result<(), (Option<usize>, String)> {
-    match read_line::<P::Line>(line)? {
-        Some(line) => protocol
+    let Some(line) = read_line::<P::Line>(line)? else {
+        return Ok(());
+    };
+    let sender = protocol.sent_by(&line);
+    match (only, sender) {
+        (Some(Peer::Host), Some(Peer::Device)) => Err((
+            None,
+            "a message the device sends, not one written to it: the port takes the host's \
+             commands and requests (a decode --from host would take the device's)"
+                .to_owned(),
+        )),
+        (Some(Peer::Device), Some(Peer::Host)) => Err((
+            None,
+            "a message the host sends: this decode reads the host's bytes (--from host), so \
+             the port takes what the device sends"
+                .to_owned(),
+        )),
+        _ => protocol
             .encode(&line, frame)
             .map_err(|message| (None, message)),
-        None => Ok(()),
     }
 }
 
 /// Turns one JSON line into the bytes of its frame, or says why it cannot.
 pub type LineEncoder = Box<dyn Fn(&[u8]) -> Result<Vec<u8>, String> + Send + Sync>;
 
-/// `protocol`'s encoder for single lines, as `encode` reads them: what a
-/// command published back from a live view goes through.
-pub fn line_encoder<P: Schema + Send + Sync + 'static>(protocol: P) -> LineEncoder {
+/// `protocol`'s encoder for single lines, as `encode` reads them, taking
+/// only the messages `writes` sends: what a command published back from a
+/// live view goes through.
+pub fn line_encoder<P: Schema + Send + Sync + 'static>(protocol: P, writes: Peer) -> LineEncoder {
     Box::new(move |line| {
         let mut frame = Vec::new();
-        encode_line(&protocol, line, &mut frame).map_err(|(column, message)| match column {
-            Some(column) => format!("column {column}: {message}"),
-            None => message,
+        encode_line(&protocol, line, &mut frame, Some(writes)).map_err(|(column, message)| {
+            match column {
+                Some(column) => format!("column {column}: {message}"),
+                None => message,
+            }
         })?;
         if frame.is_empty() {
             return Err("a diagnostic event (error, no type) has no bytes to write".to_owned());

@@ -2,7 +2,7 @@
 //! the decoder they choose and the help text. Messages and rejections print
 //! and read through the library's serde form.
 
-use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
+use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Peer, Printer, Schema};
 use crate::input::{hex_line, Input, Lines};
 use crate::suspicion::SpiCheck;
 use crate::Failure;
@@ -171,14 +171,14 @@ where
         if hold {
             out.hold_for_spi();
         }
-        let mut printer = Printer::new(out, &args.common, OmniTiles)?;
+        let mut printer = Printer::new(out, &args.common, OmniTiles, writes(args.from))?;
         return decode_datagrams(DatagramDecoder::new(framing), input, &mut printer);
     }
     let mut source = args.common.source()?;
     if hold {
         out.hold_for_spi();
     }
-    let mut printer = Printer::new(out, &args.common, OmniTiles)?;
+    let mut printer = Printer::new(out, &args.common, OmniTiles, writes(args.from))?;
     // Every side's buffer is the same size.
     let decoder = StreamDecoder::<_, { omnitiles::BOTH_BUFFER }>::new(framing);
     let chunk = args.common.chunk as usize;
@@ -189,7 +189,7 @@ where
 /// `--chunk` bytes at a time (its events never depend on the chunking).
 fn run_firmware(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     let mut source = args.common.source()?;
-    let mut printer = Printer::new(out, &args.common, OmniTiles)?;
+    let mut printer = Printer::new(out, &args.common, OmniTiles, writes(args.from))?;
     let mut parser = FirmwareParser::new();
     let mut buf = vec![0u8; args.common.chunk as usize];
     loop {
@@ -311,5 +311,20 @@ impl Schema for OmniTiles {
         let bytes = FrameBuf::<{ Message::MAX_LEN }>::encode(line).map_err(|e| e.to_string())?;
         frame.extend_from_slice(&bytes);
         Ok(())
+    }
+
+    fn sent_by(&self, line: &Message) -> Option<Peer> {
+        Some(match line {
+            Message::Command(_) => Peer::Host,
+            Message::Telemetry(_) => Peer::Device,
+        })
+    }
+}
+
+/// What a live decode of `from`'s bytes writes back: the other end's messages.
+fn writes(from: Side) -> Peer {
+    match from {
+        Side::Host => Peer::Device,
+        Side::Tile | Side::Any => Peer::Host,
     }
 }

@@ -2,7 +2,7 @@
 //! decoder they choose, and the help text. Messages print and read through
 //! the library's serde form (`robowire::pixy2`), which is the schema below.
 
-use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
+use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Peer, Printer, Schema};
 use crate::Failure;
 use clap::{Args, ValueEnum};
 use robowire::pixy2::{
@@ -123,7 +123,15 @@ pub struct EncodeArgs {
 /// Run `decode pixy2`.
 pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
     let mut source = args.common.source()?;
-    let mut printer = Printer::new(out, &args.common, Pixy2)?;
+    let mut printer = Printer::new(
+        out,
+        &args.common,
+        Pixy2,
+        match args.from {
+            Sender::Host => Peer::Device,
+            Sender::Device | Sender::Any => Peer::Host,
+        },
+    )?;
     let source = source.as_mut();
     let chunk = args.common.chunk as usize;
     let only = args.checksum_only;
@@ -179,5 +187,12 @@ impl Schema for Pixy2 {
         .map_err(|e| e.to_string())?;
         frame.extend_from_slice(&out[..n]);
         Ok(())
+    }
+
+    fn sent_by(&self, line: &Self::Line) -> Option<Peer> {
+        Some(match line.body {
+            MessageBuf::Request(_) => Peer::Host,
+            MessageBuf::Response(_) => Peer::Device,
+        })
     }
 }

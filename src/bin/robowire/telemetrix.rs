@@ -3,7 +3,7 @@
 //! and the `--from any` attribution are the library's
 //! ([`robowire::telemetrix`]).
 
-use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Printer, Schema};
+use crate::driver::{self, DecodeCommon, Decoded, EncodeCommon, Output, Peer, Printer, Schema};
 use crate::input::ByteSource;
 use crate::Failure;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
@@ -210,6 +210,10 @@ pub fn decode(args: &DecodeArgs, out: &mut Output) -> Result<Decoded, Failure> {
         Telemetrix {
             dialect: args.dialect,
         },
+        match args.from {
+            From::Host => Peer::Device,
+            From::Pico | From::Any => Peer::Host,
+        },
     )?;
     let chunk = args.common.chunk as usize;
     let source = source.as_mut();
@@ -287,5 +291,13 @@ impl Schema for Telemetrix {
         let message = MessageBuf::deserialize_in(line, self.dialect).map_err(|e| e.to_string())?;
         frame.extend_from_slice(&message);
         Ok(())
+    }
+
+    fn sent_by(&self, line: &serde_json::Value) -> Option<Peer> {
+        let message = MessageBuf::deserialize_in(line, self.dialect).ok()?;
+        Some(match message.is_command() {
+            true => Peer::Host,
+            false => Peer::Device,
+        })
     }
 }
