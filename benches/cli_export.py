@@ -23,6 +23,8 @@ import sys
 import tempfile
 import time
 
+from release_binary import release_binary
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
@@ -46,15 +48,7 @@ def main():
     parser.add_argument("--bin", help="a built robowire binary (default: build the release one)")
     options = parser.parse_args()
 
-    binary = options.bin
-    if binary is None:
-        subprocess.run(
-            ["cargo", "build", "--release", "--features", "cli", "--bin", "robowire"],
-            cwd=ROOT,
-            check=True,
-        )
-        target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
-        binary = os.path.join(ROOT, target, "release", "robowire")
+    binary = release_binary(options.bin, "cli")
 
     scratch = tempfile.mkdtemp(prefix="robowire-export-bench-")
     try:
@@ -73,6 +67,7 @@ def main():
             ("jsonl, one pass", [binary, "decode", "omnitiles", "--from", "tile", "--allow-noise", big]),
             ("csv -o DIR", [binary, "decode", "omnitiles", "--from", "tile", "--format", "csv", "-o", csv_dir, "--force", big]),
             ("mcap -o FILE", [binary, "decode", "omnitiles", "--from", "tile", "--format", "mcap", "-o", mcap_file, "--force", big]),
+            ("mcap, no zstd", [binary, "decode", "omnitiles", "--from", "tile", "--format", "mcap", "--compression", "none", "-o", mcap_file, "--force", big]),
         ]
         best = {name: (float("inf"), 0.0) for name, _ in formats}
         # Interleaved, so a busy moment of the machine hits every format alike.
