@@ -37,7 +37,7 @@ class SimulatedTile:
         self.m1_pos = 1000
         self.m1_speed = 0
         self.commands: list[Any] = []
-        self.decoder = omnitiles.Decoder(source="host", typed=True)
+        self.decoder = omnitiles.Decoder(source="host")
 
     def telemetry(self, n: int) -> bytes:
         return omnitiles.encode(
@@ -101,7 +101,7 @@ async def host(port: str, frames: int) -> tuple[list[dict[str, Any]], dict[str, 
     transport, _ = await loop.connect_read_pipe(lambda: asyncio.StreamReaderProtocol(reader), read_file)
 
     # Typed items: one light object per frame, fields as attributes.
-    decoder = omnitiles.Decoder(source="tile", layouts=["ble53"], typed=True)
+    decoder = omnitiles.Decoder(source="tile", layouts=["ble53"])
     seen: list[omnitiles.Telemetry] = []
     extended = braked = False
     try:

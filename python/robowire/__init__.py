@@ -7,21 +7,21 @@ Three protocols, one API, backed by robowire's Rust codecs:
 * :mod:`robowire.telemetrix` -- Telemetrix4RpiPico commands and reports.
 
 Each has a stream ``Decoder`` (a :class:`StreamDecoder`: ``feed(data) -> list``,
-``finish() -> list``, ``stats``) and ``encode(message) -> bytes``. Decoded
-items and messages to encode are dicts in the JSON-lines schema of the
-``robowire`` command-line tool::
+``finish() -> list``, ``stats``) and ``encode(message) -> bytes``. Decoded items
+are typed: their fields read as attributes (``t.m1_pos``, ``t.imu.az``) or keys
+(``t["m1_pos"]``) without a dict per frame, :class:`robowire.omnitiles.Telemetry`
+for telemetry and :class:`Item` for everything else, each a read-only mapping in
+the JSON-lines schema of the ``robowire`` command-line tool::
 
     >>> from robowire import omnitiles
     >>> decoder = omnitiles.Decoder(source="host")
     >>> decoder.feed(bytes.fromhex("a5 30 c8 f8 a5 50 50"))
-    [{'offset': 0, 'len': 4, 'type': 'm1_extend', 'speed': 200}, {'offset': 4, 'len': 3, 'type': 'ping'}]
+    [Item({'offset': 0, 'len': 4, 'type': 'm1_extend', 'speed': 200}), Item({'offset': 4, 'len': 3, 'type': 'ping'})]
     >>> omnitiles.encode({"type": "m1_extend", "speed": 200}).hex(" ")
     'a5 30 c8 f8'
 
-A decoder made with ``typed=True`` returns typed items instead, whose fields
-read as attributes (``t.m1_pos``, ``t.imu.az``) or keys (``t["m1_pos"]``)
-without a dict per frame: :class:`robowire.omnitiles.Telemetry` for telemetry,
-:class:`Item` for everything else.
+A decoder made with ``typed=False`` returns those dicts instead; ``encode``
+takes either.
 """
 
 from collections.abc import Mapping as _Mapping

@@ -16,11 +16,11 @@ _Bytes: TypeAlias = Union[bytes, bytearray, memoryview]
 
 @final
 class Item(Mapping[str, Any]):
-    """A decoded item that builds its dict only when first read: every item of
-    ``typed=True`` but OmniTiles telemetry, and every item of the deprecated
+    """A decoded item that builds its dict only when first read: every default
+    (typed) item but OmniTiles telemetry, and every item of the deprecated
     ``lazy=True``.
 
-    A read-only mapping with exactly the keys and values of the dict a default
+    A read-only mapping with exactly the keys and values of the dict a ``typed=False``
     decoder returns; equal to that dict. Fields read as attributes too
     (``item.speed``).
     """
@@ -40,8 +40,8 @@ class Item(Mapping[str, Any]):
     def __getattr__(self, name: str) -> Any: ...
 
 _Decoded: TypeAlias = Any
-"""A decoded item: a dict in the JSON-lines schema, an :class:`Item`, or with
-``typed=True`` also a :class:`robowire.omnitiles.Telemetry`."""
+"""A decoded item: an :class:`Item` or a :class:`robowire.omnitiles.Telemetry`
+(the default), or with ``typed=False`` a dict in the JSON-lines schema."""
 
 @disjoint_base
 class StreamDecoder:
@@ -79,4 +79,4 @@ class StreamDecoder:
         """Whether items are :class:`Item` objects (``lazy=True``, deprecated)."""
     @property
     def typed(self) -> bool:
-        """Whether items are typed (``typed=True``)."""
+        """Whether items are typed (the default; ``typed=False`` gives dicts)."""

@@ -4,7 +4,9 @@
 * :class:`DatagramDecoder` -- one BLE notification (or write) at a time;
 * :func:`encode` -- a message dict to its frame.
 
-Items and messages are dicts in the ``robowire`` tool's JSON-lines schema::
+Items are typed (:class:`Telemetry` per telemetry frame, :class:`robowire.Item`
+for the rest), read-only mappings of the ``robowire`` tool's JSON-lines schema;
+with ``typed=False`` they are these dicts, which :func:`encode` takes too::
 
     {"offset": 0, "len": 4, "type": "m1_extend", "speed": 200}
     {"offset": 4, "len": 53, "type": "telemetry", "layout": "ble53",
@@ -19,6 +21,8 @@ and, where the layout carries them, ``uwb``, ``tof``, ``imu``, ``m1_adcs``,
 ``m2_adcs``; a 0xFFFF reading is ``None``.
 """
 
+from collections.abc import Mapping as _Mapping
+
 from ._robowire import omnitiles as _native
 
 Decoder = _native.Decoder
@@ -27,5 +31,8 @@ Telemetry = _native.Telemetry
 Imu = _native.Imu
 encode = _native.encode
 field_info = _native.field_info
+
+_Mapping.register(Telemetry)
+_Mapping.register(Imu)
 
 __all__ = ["Decoder", "DatagramDecoder", "Imu", "Telemetry", "encode", "field_info"]

@@ -1,6 +1,6 @@
 """OmniTiles: host commands and tile telemetry (``a5``, id, payload, sum)."""
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from typing import Any, ClassVar, Literal, Optional, TypedDict, Union
 
 from typing_extensions import Self, TypeAlias, final
@@ -29,8 +29,9 @@ def field_info(type: str, path: str, /) -> Optional[FieldInfo]:
     """What field ``path`` (``"imu.az"``, ``"uwb.2"``) of message ``type`` means."""
 
 @final
-class Imu:
-    """One IMU sample; each value is the wire's f32 exactly (NaN, inf included)."""
+class Imu(Mapping[str, float]):
+    """One IMU sample; each value is the wire's f32 exactly (NaN, inf included).
+    A read-only mapping of the six names to their values."""
 
     units: ClassVar[dict[str, str]]
     """``{"ax": "m/s²", ..., "gz": "rad/s"}``."""
@@ -53,16 +54,22 @@ class Imu:
     @property
     def gz(self) -> float:
         """Angular rate about z, rad/s."""
-    def keys(self) -> list[str]: ...
+    def keys(self) -> list[str]: ...  # type: ignore[override]
+    def values(self) -> list[float]: ...  # type: ignore[override]
+    def items(self) -> list[tuple[str, float]]: ...  # type: ignore[override]
     def to_dict(self) -> dict[str, float]:
         """The dict form's ``imu`` dict."""
     def __getitem__(self, key: str, /) -> float: ...
+    def __iter__(self) -> Iterator[str]: ...
+    def __len__(self) -> int: ...
     def __contains__(self, key: object, /) -> bool: ...
 
 @final
-class Telemetry:
-    """One telemetry frame (``typed=True``). ``None``: no reading (0xFFFF), or
-    a group the layout does not carry (``"tof" in t`` tells them apart)."""
+class Telemetry(Mapping[str, Any]):
+    """One telemetry frame (a decoder's default item). ``None``: no reading
+    (0xFFFF), or a group the layout does not carry (``"tof" in t`` tells them
+    apart). A read-only mapping of the dict form's keys (``len(t)`` counts
+    them; the frame's length is ``t.len``), with tuples for its lists."""
 
     @property
     def offset(self) -> int:
@@ -103,11 +110,15 @@ class Telemetry:
     @property
     def m2_adcs(self) -> Optional[tuple[int, int]]:
         """M2's two potentiometer channels, raw 0..4095 (45 and 53-byte layouts)."""
-    def keys(self) -> list[str]:
+    def keys(self) -> list[str]:  # type: ignore[override]
         """The keys of the dict form (groups the layout carries only)."""
+    def values(self) -> list[Any]: ...  # type: ignore[override]
+    def items(self) -> list[tuple[str, Any]]: ...  # type: ignore[override]
+    def __iter__(self) -> Iterator[str]: ...
+    def __len__(self) -> int: ...
     def get(self, key: str, default: Any = None, /) -> Any: ...
     def to_dict(self) -> dict[str, Any]:
-        """The dict a default decoder returns for this frame."""
+        """The dict a ``typed=False`` decoder returns for this frame."""
     def __getitem__(self, key: str, /) -> Any: ...
     def __contains__(self, key: object, /) -> bool: ...
 
@@ -127,7 +138,7 @@ class Decoder(StreamDecoder):
         layouts: _Layouts = None,
         errors: bool = False,
         lazy: bool = False,
-        typed: bool = False,
+        typed: Optional[bool] = None,
     ) -> Self: ...
 
 @final
@@ -140,7 +151,7 @@ class DatagramDecoder:
         layouts: _Layouts = None,
         errors: bool = False,
         lazy: bool = False,
-        typed: bool = False,
+        typed: Optional[bool] = None,
     ) -> Self: ...
     def decode(self, datagram: _Bytes, /) -> list[_Decoded]:
         """The items of one datagram, in order."""

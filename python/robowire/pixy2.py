@@ -3,7 +3,9 @@
 * :class:`Decoder` -- the stream decoder for a serial link or a capture;
 * :func:`encode` -- a message dict to its frame.
 
-Items and messages are dicts in the ``robowire`` tool's JSON-lines schema::
+Items are :class:`robowire.Item` objects, read-only mappings of the ``robowire``
+tool's JSON-lines schema whose fields read as attributes; with ``typed=False``
+they are these dicts, which :func:`encode` takes too::
 
     {"offset": 0, "len": 4, "type": "get_version", "checksum": False}
     {"offset": 4, "len": 22, "type": "version", "checksum": True, "hardware": 8704,

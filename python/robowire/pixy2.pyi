@@ -28,7 +28,7 @@ class Decoder(StreamDecoder):
         checksum_only: bool = False,
         errors: bool = False,
         lazy: bool = False,
-        typed: bool = False,
+        typed: Optional[bool] = None,
     ) -> Self: ...
 
 def encode(message: Mapping[str, Any], /) -> bytes:

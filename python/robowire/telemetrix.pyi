@@ -31,7 +31,7 @@ class Decoder(StreamDecoder):
         lenient: bool = False,
         errors: bool = False,
         lazy: bool = False,
-        typed: bool = False,
+        typed: Optional[bool] = None,
     ) -> Self: ...
 
 def encode(message: Mapping[str, Any], /, dialect: _Dialect = "mirte13") -> bytes:

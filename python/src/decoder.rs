@@ -12,15 +12,15 @@ use crate::engine::{stats_dict, with_bytes, Engine, Form, Items};
 /// The stream decoder every protocol's ``Decoder`` is: feed it bytes as they
 /// arrive, in chunks of any size, and it returns the decoded items.
 ///
-/// Each item is a dict in the ``robowire`` command-line tool's JSON-lines
-/// schema: ``offset`` (of the frame's first byte, counted from the first byte
+/// Each item is a typed object (:class:`robowire.omnitiles.Telemetry`, else
+/// :class:`robowire.Item`) that reads its fields as attributes, or with
+/// ``typed=False`` a dict, in the ``robowire`` command-line tool's JSON-lines
+/// schema either way: ``offset`` (of the frame's first byte, counted from the first byte
 /// ever fed), ``len`` (the frame's length), then the message's own keys
 /// (``type`` first). With ``errors=True``, rejected candidates are items too:
 /// ``offset`` then the error's keys (``error`` first, no ``type``). The items
 /// never depend on how the bytes were split; call :meth:`finish` at the end of
-/// the input to resolve a frame cut short. With ``typed=True`` the items are
-/// typed objects (:class:`robowire.omnitiles.Telemetry`, else
-/// :class:`robowire.Item`) that read their fields as attributes.
+/// the input to resolve a frame cut short.
 ///
 /// Construct a protocol's subclass (``robowire.omnitiles.Decoder``, ...), not
 /// this class.
@@ -134,7 +134,7 @@ impl PyStreamDecoder {
         self.items.form == Form::Lazy
     }
 
-    /// Whether items are typed objects (``typed=True``): an
+    /// Whether items are typed objects (the default, not ``typed=False``): an
     /// :class:`robowire.omnitiles.Telemetry` per telemetry frame, a
     /// :class:`robowire.Item` for every other message and rejection.
     #[getter]

@@ -124,18 +124,18 @@ where
 /// What a decoder's items are.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Form {
-    /// Dicts in the JSON-lines schema (the default).
+    /// Dicts in the JSON-lines schema (`typed=False`).
     Dict,
     /// [`Item`]s that build their dict when read (`lazy=True`, deprecated).
     Lazy,
-    /// Typed items (`typed=True`): see [`crate::typed`].
+    /// Typed items (the default): see [`crate::typed`].
     Typed,
 }
 
 /// The error of `feed_array` on a protocol without tables.
 fn no_tables() -> PyErr {
     PyNotImplementedError::new_err(
-        "feed_array has tables for OmniTiles only so far; use feed(...) with typed=True",
+        "feed_array has tables for OmniTiles only so far; use feed(...), whose typed items read only the fields asked for",
     )
 }
 
@@ -149,44 +149,57 @@ pub struct Items {
 }
 
 impl Items {
-    /// The options `errors`, `lazy` and `typed` of a constructor: `lazy`
-    /// warns that it is deprecated, and it cannot be combined with `typed`.
-    pub fn new(py: Python<'_>, errors: bool, lazy: bool, typed: bool) -> PyResult<Self> {
+    /// The options `errors`, `lazy` and `typed` of a constructor. Typed
+    /// items are the default; `typed=False` gives dicts. `typed=True`, the
+    /// spelling from before it was the default, and `lazy=True` warn that
+    /// they are deprecated; `lazy` cannot be combined with `typed=True`.
+    pub fn new(py: Python<'_>, errors: bool, lazy: bool, typed: Option<bool>) -> PyResult<Self> {
         let form = match (lazy, typed) {
-            (false, false) => Form::Dict,
-            (false, true) => Form::Typed,
-            (true, false) => {
-                PyErr::warn(
+            (false, None) => Form::Typed,
+            (false, Some(false)) => Form::Dict,
+            (false, Some(true)) => {
+                deprecated(
                     py,
-                    &py.get_type::<PyDeprecationWarning>(),
-                    c"lazy=True is deprecated: typed=True gives items that read their fields \
+                    c"typed=True is deprecated: typed items are the default now, so drop it \
+                      (typed=False gives dicts)",
+                )?;
+                Form::Typed
+            }
+            (true, None | Some(false)) => {
+                deprecated(
+                    py,
+                    c"lazy=True is deprecated: the default typed items read their fields \
                       without building a dict (robowire.Item for messages without a class)",
-                    2,
                 )?;
                 Form::Lazy
             }
-            (true, true) => {
+            (true, Some(true)) => {
                 return Err(PyValueError::new_err(
-                    "lazy=True and typed=True cannot be combined: choose typed=True",
+                    "lazy=True and typed=True cannot be combined: drop both for typed items",
                 ))
             }
         };
         Ok(Self { errors, form })
     }
 
-    /// The options as `repr()` shows them: `, errors=True, typed=True`.
+    /// The options as `repr()` shows them: `, errors=True, typed=False`.
     pub fn describe(self) -> String {
         let mut text = String::new();
         if self.errors {
             text.push_str(", errors=True");
         }
         match self.form {
-            Form::Dict => {}
+            Form::Typed => {}
             Form::Lazy => text.push_str(", lazy=True"),
-            Form::Typed => text.push_str(", typed=True"),
+            Form::Dict => text.push_str(", typed=False"),
         }
         text
     }
+}
+
+/// Warn with a `DeprecationWarning` pointing at the caller's line.
+fn deprecated(py: Python<'_>, message: &std::ffi::CStr) -> PyResult<()> {
+    PyErr::warn(py, &py.get_type::<PyDeprecationWarning>(), message, 2)
 }
 
 /// Append one owned event to `out`: a dict in the JSON-lines schema, an

@@ -1,6 +1,6 @@
 //! `robowire.Item`: a decoded item kept in Rust until Python reads it, for
-//! decoders made with `typed=True` (messages without a class of their own)
-//! or `lazy=True`.
+//! decoders' default typed items (messages without a class of their own)
+//! and for the deprecated `lazy=True`.
 
 use pyo3::basic::CompareOp;
 use pyo3::exceptions::{PyAttributeError, PyKeyError};
@@ -45,11 +45,11 @@ impl<E: Serialize + Send + Sync> Erased for Rejected<E> {
 }
 
 /// A decoded item that builds its dict only when it is first read: what a
-/// decoder made with ``typed=True`` returns for every message without a class
+/// decoder returns by default for every message without a class
 /// of its own (all but OmniTiles telemetry) and for rejections, and what the
 /// deprecated ``lazy=True`` returns for everything. Fields read as attributes
 /// (``item.speed``) or as keys. It is a read-only mapping with
-/// the same keys and values as the dict a default decoder returns
+/// the same keys and values as the dict a ``typed=False`` decoder returns
 /// (``item["type"]``, ``item.get("tof")``, ``dict(item)``, ``item ==
 /// {...}``); :meth:`to_dict` gives a plain dict. Items that are never read
 /// cost almost nothing, so a host that looks at one frame in a hundred, or

@@ -115,29 +115,30 @@ fn describe(class: &str, source: &str, layouts: Option<&Bound<'_, PyAny>>, items
 /// ``"uwbtof17"``, ``"ble53"``, ``"spi45"`` and ``"auto"`` (the four the SDK
 /// documents, the default); name the one layout you know for the fastest,
 /// surest decoding. ``errors=True`` returns rejected candidates as items;
-/// ``typed=True`` returns typed items (a :class:`Telemetry` per telemetry
-/// frame, a :class:`robowire.Item` for a command or a rejection) instead of
-/// dicts; ``lazy=True`` (deprecated) returns :class:`robowire.Item` mappings.
+/// items are typed (a :class:`Telemetry` per telemetry frame, a
+/// :class:`robowire.Item` for a command or a rejection); ``typed=False``
+/// returns dicts instead. ``typed=True`` (the spelling from before typed items
+/// were the default) and ``lazy=True`` are deprecated and warn.
 ///
 /// >>> from robowire import omnitiles
 /// >>> d = omnitiles.Decoder(source="host")
 /// >>> d.feed(bytes.fromhex("00 a5 30 c8 f8 a5 50"))
-/// [{'offset': 1, 'len': 4, 'type': 'm1_extend', 'speed': 200}]
+/// [Item({'offset': 1, 'len': 4, 'type': 'm1_extend', 'speed': 200})]
 /// >>> d.feed(b"\x50")
-/// [{'offset': 5, 'len': 3, 'type': 'ping'}]
+/// [Item({'offset': 5, 'len': 3, 'type': 'ping'})]
 #[pyclass(module = "robowire.omnitiles", name = "Decoder", extends = PyStreamDecoder)]
 pub struct OmniDecoder;
 
 #[pymethods]
 impl OmniDecoder {
     #[new]
-    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false, typed = false))]
+    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false, typed = None))]
     fn new(
         source: &str,
         layouts: Option<&Bound<'_, PyAny>>,
         errors: bool,
         lazy: bool,
-        typed: bool,
+        typed: Option<bool>,
         py: Python<'_>,
     ) -> PyResult<PyClassInitializer<Self>> {
         let engine: Box<dyn Engine> = match choose(source, layouts)? {
@@ -162,7 +163,7 @@ impl OmniDecoder {
 /// >>> from robowire import omnitiles
 /// >>> d = omnitiles.DatagramDecoder(source="host")
 /// >>> d.decode(bytes.fromhex("a5 32 32 a5 42 42"))
-/// [{'offset': 0, 'len': 3, 'type': 'm1_brake'}, {'offset': 3, 'len': 3, 'type': 'm2_brake'}]
+/// [Item({'offset': 0, 'len': 3, 'type': 'm1_brake'}), Item({'offset': 3, 'len': 3, 'type': 'm2_brake'})]
 #[pyclass(module = "robowire.omnitiles", name = "DatagramDecoder")]
 pub struct OmniDatagramDecoder {
     inner: Box<dyn Datagrams>,
@@ -173,13 +174,13 @@ pub struct OmniDatagramDecoder {
 #[pymethods]
 impl OmniDatagramDecoder {
     #[new]
-    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false, typed = false))]
+    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false, typed = None))]
     fn new(
         source: &str,
         layouts: Option<&Bound<'_, PyAny>>,
         errors: bool,
         lazy: bool,
-        typed: bool,
+        typed: Option<bool>,
         py: Python<'_>,
     ) -> PyResult<Self> {
         let inner: Box<dyn Datagrams> = match choose(source, layouts)? {
@@ -225,7 +226,7 @@ impl OmniDatagramDecoder {
         self.items.form == Form::Lazy
     }
 
-    /// Whether items are typed objects (``typed=True``).
+    /// Whether items are typed objects (the default, not ``typed=False``).
     #[getter]
     fn typed(&self) -> bool {
         self.items.form == Form::Typed

@@ -46,27 +46,27 @@ fn engine(source: &str, checksum_only: bool) -> PyResult<Box<dyn Engine>> {
 /// ``checksum_only=True`` accepts only the checksum form (``af c1``), as a
 /// Pixy2 always answers over SPI, I2C and UART: then no unverifiable frame
 /// can be decoded. ``errors=True`` returns rejected candidates as items;
-/// ``typed=True`` returns :class:`robowire.Item` objects (fields as
-/// attributes, built on first read) instead of dicts; ``lazy=True`` is its
-/// deprecated older name.
+/// items are :class:`robowire.Item` objects (fields as attributes, built on
+/// first read); ``typed=False`` returns dicts instead. ``typed=True`` and
+/// ``lazy=True`` are deprecated and warn.
 ///
 /// >>> from robowire import pixy2
 /// >>> d = pixy2.Decoder(source="device")
 /// >>> d.feed(bytes.fromhex("af c1 01 04 3d 00 3d 00 00 00"))
-/// [{'offset': 0, 'len': 10, 'type': 'result', 'checksum': True, 'value': 61}]
+/// [Item({'offset': 0, 'len': 10, 'type': 'result', 'checksum': True, 'value': 61})]
 #[pyclass(module = "robowire.pixy2", name = "Decoder", extends = PyStreamDecoder)]
 pub struct Pixy2Decoder;
 
 #[pymethods]
 impl Pixy2Decoder {
     #[new]
-    #[pyo3(signature = (source = "any", checksum_only = false, errors = false, lazy = false, typed = false))]
+    #[pyo3(signature = (source = "any", checksum_only = false, errors = false, lazy = false, typed = None))]
     fn new(
         source: &str,
         checksum_only: bool,
         errors: bool,
         lazy: bool,
-        typed: bool,
+        typed: Option<bool>,
         py: Python<'_>,
     ) -> PyResult<PyClassInitializer<Self>> {
         let engine = engine(source, checksum_only)?;

@@ -142,28 +142,28 @@ fn dialect(name: &str) -> PyResult<Dialect> {
 /// 1.1). ``lenient=True`` accepts report ids the dialect does not define as
 /// ``unknown_report`` when a valid report follows directly (not with
 /// ``source="host"``). ``errors=True`` returns rejected candidates as items;
-/// ``typed=True`` returns :class:`robowire.Item` objects (fields as
-/// attributes, built on first read) instead of dicts; ``lazy=True`` is its
-/// deprecated older name.
+/// items are :class:`robowire.Item` objects (fields as attributes, built on
+/// first read); ``typed=False`` returns dicts instead. ``typed=True`` and
+/// ``lazy=True`` are deprecated and warn.
 ///
 /// >>> from robowire import telemetrix
 /// >>> d = telemetrix.Decoder(source="pico")
 /// >>> d.feed(bytes.fromhex("04 03 1a 04 c9 05 0b 09 0a 00 77"))
-/// [{'offset': 0, 'len': 5, 'type': 'analog_report', 'pin': 26, 'value': 1225}, {'offset': 5, 'len': 6, 'type': 'sonar_distance', 'trig': 9, 'echo': 10, 'cm': 119}]
+/// [Item({'offset': 0, 'len': 5, 'type': 'analog_report', 'pin': 26, 'value': 1225}), Item({'offset': 5, 'len': 6, 'type': 'sonar_distance', 'trig': 9, 'echo': 10, 'cm': 119})]
 #[pyclass(module = "robowire.telemetrix", name = "Decoder", extends = PyStreamDecoder)]
 pub struct TmxDecoder;
 
 #[pymethods]
 impl TmxDecoder {
     #[new]
-    #[pyo3(signature = (source = "any", dialect = "mirte13", lenient = false, errors = false, lazy = false, typed = false))]
+    #[pyo3(signature = (source = "any", dialect = "mirte13", lenient = false, errors = false, lazy = false, typed = None))]
     fn new(
         source: &str,
         dialect: &str,
         lenient: bool,
         errors: bool,
         lazy: bool,
-        typed: bool,
+        typed: Option<bool>,
         py: Python<'_>,
     ) -> PyResult<PyClassInitializer<Self>> {
         let name = dialect;

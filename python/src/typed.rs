@@ -1,4 +1,4 @@
-//! Typed items (`typed=True`): one light Python object per decoded frame.
+//! Typed items (the default): one light Python object per decoded frame.
 //!
 //! OmniTiles telemetry, the frame a host reads at rate, is a
 //! [`PyTelemetry`] holding the library's `Copy` [`Telemetry`]: creating one
@@ -10,7 +10,7 @@
 use pyo3::basic::CompareOp;
 use pyo3::exceptions::PyKeyError;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyString, PyTuple};
+use pyo3::types::{PyDict, PyIterator, PyList, PyString, PyTuple};
 use robowire::omnitiles::{Imu, Message, Telemetry};
 use robowire::stream::OwnedFrame;
 use serde::Serialize;
@@ -90,7 +90,12 @@ const TELEMETRY_KEYS: [&str; 11] = [
     "m2_adcs",
 ];
 
-/// One OmniTiles telemetry frame (``typed=True``). Attributes: ``offset``,
+/// `key` as a name, if it is a `str` (a mapping may be asked about any object).
+fn name_of<'py>(key: &Bound<'py, PyAny>) -> Option<pyo3::pybacked::PyBackedStr> {
+    key.extract().ok()
+}
+
+/// One OmniTiles telemetry frame (a decoder's default item). Attributes: ``offset``,
 /// ``len``, ``type`` (``"telemetry"``), ``layout`` (``"ble53"``, ...),
 /// ``m1_pos``, ``m2_pos``, ``uwb`` (a tuple of four), ``tof``, ``imu`` (an
 /// :class:`Imu`), ``m1_adcs`` (four), ``m2_adcs`` (two). A reading the tile
@@ -98,8 +103,9 @@ const TELEMETRY_KEYS: [&str; 11] = [
 /// not carry (``"tof" in t`` tells them apart; ``t["tof"]`` raises
 /// ``KeyError`` for a group not carried, as the dict form has no such key).
 ///
-/// ``t["m1_pos"]`` reads a field by name, :meth:`to_dict` gives the dict a
-/// default decoder returns, and ``==`` compares with another item or with
+/// A read-only mapping: ``t["m1_pos"]`` reads a field by name, iteration and
+/// ``len`` go over the keys, :meth:`to_dict` gives the dict a ``typed=False``
+/// decoder returns, and ``==`` compares with another item or with
 /// that dict.
 #[pyclass(module = "robowire.omnitiles", name = "Telemetry", frozen)]
 pub struct PyTelemetry {
@@ -319,7 +325,7 @@ impl PyTelemetry {
         })
     }
 
-    /// The item as the dict a default decoder returns (lists, an ``imu``
+    /// The item as the dict a ``typed=False`` decoder returns (lists, an ``imu``
     /// dict).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.frame())
@@ -330,8 +336,37 @@ impl PyTelemetry {
             .ok_or_else(|| PyKeyError::new_err(key.to_owned()))
     }
 
-    fn __contains__(&self, py: Python<'_>, key: &str) -> PyResult<bool> {
-        Ok(self.field(py, key)?.is_some())
+    /// The values of :meth:`keys`, in that order.
+    fn values<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
+        self.keys(py)?
+            .into_iter()
+            .map(|key| self.group(py, key))
+            .collect()
+    }
+
+    /// The ``(key, value)`` pairs of :meth:`keys`, in that order.
+    fn items<'py>(&self, py: Python<'py>) -> PyResult<Vec<(&'static str, Bound<'py, PyAny>)>> {
+        self.keys(py)?
+            .into_iter()
+            .map(|key| Ok((key, self.group(py, key)?)))
+            .collect()
+    }
+
+    fn __contains__(&self, py: Python<'_>, key: &Bound<'_, PyAny>) -> PyResult<bool> {
+        match name_of(key) {
+            Some(key) => Ok(self.field(py, &key)?.is_some()),
+            None => Ok(false),
+        }
+    }
+
+    /// The number of keys (the frame's length in bytes is ``len``).
+    fn __len__(&self, py: Python<'_>) -> PyResult<usize> {
+        Ok(self.keys(py)?.len())
+    }
+
+    /// Iterates over the keys, as a mapping does.
+    fn __iter__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyIterator>> {
+        PyList::new(py, self.keys(py)?)?.as_any().try_iter()
     }
 
     fn __richcmp__<'py>(
@@ -447,8 +482,27 @@ impl PyImu {
             .ok_or_else(|| PyKeyError::new_err(key.to_owned()))
     }
 
-    fn __contains__(&self, key: &str) -> bool {
-        self.value(key).is_some()
+    /// The six values, in wire order.
+    fn values(&self) -> [f64; 6] {
+        self.imu.to_array().map(exact_f64)
+    }
+
+    /// The six ``(name, value)`` pairs, in wire order.
+    fn items(&self) -> Vec<(&'static str, f64)> {
+        Imu::NAMES.into_iter().zip(self.values()).collect()
+    }
+
+    fn __contains__(&self, key: &Bound<'_, PyAny>) -> bool {
+        name_of(key).is_some_and(|key| self.value(&key).is_some())
+    }
+
+    fn __len__(&self) -> usize {
+        Imu::NAMES.len()
+    }
+
+    /// Iterates over the six names, as a mapping does.
+    fn __iter__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyIterator>> {
+        PyList::new(py, Imu::NAMES)?.as_any().try_iter()
     }
 
     fn __richcmp__<'py>(

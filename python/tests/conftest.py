@@ -50,9 +50,11 @@ class Case:
 
     def decoder(self, errors: bool = True, lazy: bool = False, typed: bool = False) -> Any:
         if lazy:  # deprecated: tested as long as it exists
-            with pytest.warns(DeprecationWarning, match="typed=True"):
+            with pytest.warns(DeprecationWarning, match="lazy=True is deprecated"):
                 return self.make(errors=errors, lazy=True, **self.kwargs)
-        return self.make(errors=errors, typed=typed, **self.kwargs)
+        if typed:  # the default
+            return self.make(errors=errors, **self.kwargs)
+        return self.make(errors=errors, typed=False, **self.kwargs)
 
     def cli_args(self) -> list[str]:
         protocol = {omnitiles: "omnitiles", pixy2: "pixy2", telemetrix: "telemetrix"}[

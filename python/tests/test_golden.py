@@ -132,7 +132,7 @@ def check(item: dict[str, Any], data: bytes, fields: dict[str, Any]) -> None:
 def test_omnitiles(text: str, fields: dict[str, Any]) -> None:
     data = bytes.fromhex(text)
     layouts = "auto" if fields["type"] != "telemetry" else fields["layout"]
-    item = only_item(omnitiles.Decoder(layouts=layouts), data)
+    item = only_item(omnitiles.Decoder(layouts=layouts, typed=False), data)
     check(item, data, fields)
     assert omnitiles.encode(item) == data
     # The spec's fields alone are the whole message for commands.
@@ -143,7 +143,7 @@ def test_omnitiles(text: str, fields: dict[str, Any]) -> None:
 @pytest.mark.parametrize("text,fields", PIXY2, ids=[t[:40] for t, _ in PIXY2])
 def test_pixy2(text: str, fields: dict[str, Any]) -> None:
     data = bytes.fromhex(text)
-    item = only_item(pixy2.Decoder(), data)
+    item = only_item(pixy2.Decoder(typed=False), data)
     check(item, data, fields)
     assert pixy2.encode(item) == data
 
@@ -151,25 +151,25 @@ def test_pixy2(text: str, fields: dict[str, Any]) -> None:
 @pytest.mark.parametrize("source,text,fields", TELEMETRIX, ids=[t for _, t, _ in TELEMETRIX])
 def test_telemetrix(source: str, text: str, fields: dict[str, Any]) -> None:
     data = bytes.fromhex(text)
-    item = only_item(telemetrix.Decoder(source=source), data)
+    item = only_item(telemetrix.Decoder(source=source, typed=False), data)
     check(item, data, fields)
     assert telemetrix.encode(item) == data
 
 
 def test_telemetrix_probe_zeros_are_padding() -> None:
-    items = telemetrix.Decoder(source="host").feed(bytes.fromhex("00 00 00 00 00 00 00 01 05"))
+    items = telemetrix.Decoder(source="host", typed=False).feed(bytes.fromhex("00 00 00 00 00 00 00 01 05"))
     assert [(i["offset"], i["type"]) for i in items] == [(7, "get_firmware_version")]
 
 
 def test_pixy2_spi_filler_and_doubled_sync() -> None:
     data = bytes.fromhex("01 01 01 af af c1 01 04 00 00 00 00 00 00")
-    items = pixy2.Decoder(source="device").feed(data)
+    items = pixy2.Decoder(source="device", typed=False).feed(data)
     assert [(i["offset"], i["type"], i["value"]) for i in items] == [(4, "result", 0)]
 
 
 def test_omnitiles_brake_buffer_datagram() -> None:
     buffer = bytes.fromhex("a5 32 32 a5 42 42") + bytes(122)
-    items = omnitiles.DatagramDecoder(source="host").decode(buffer)
+    items = omnitiles.DatagramDecoder(source="host", typed=False).decode(buffer)
     assert items == [
         {"offset": 0, "len": 3, "type": "m1_brake"},
         {"offset": 3, "len": 3, "type": "m2_brake"},

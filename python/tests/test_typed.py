@@ -1,4 +1,4 @@
-"""Typed items (``typed=True``): an omnitiles.Telemetry per telemetry frame,
+"""Typed items (the default): an omnitiles.Telemetry per telemetry frame,
 a robowire.Item for every other message and rejection; attributes, keys,
 to_dict(), ==, repr, and the same items however the bytes are split."""
 
@@ -8,6 +8,7 @@ import gc
 import math
 import struct
 import warnings
+from collections.abc import Mapping
 from typing import Any
 
 import pytest
@@ -49,7 +50,7 @@ def test_typed_items_do_not_depend_on_chunking(case: Case, chunk: int) -> None:
 
 def test_telemetry_attributes() -> None:
     data = CASES[1].input()
-    (t, *_) = omnitiles.Decoder(source="tile", layouts="ble53", typed=True).feed(data)
+    (t, *_) = omnitiles.Decoder(source="tile", layouts="ble53").feed(data)
     assert isinstance(t, omnitiles.Telemetry)
     assert (t.offset, t.len, t.type, t.layout) == (0, 53, "telemetry", "ble53")
     assert (t.m1_pos, t.m2_pos, t.tof) == (1104, 2852, 448)
@@ -65,25 +66,25 @@ def test_telemetry_attributes() -> None:
 
 
 def test_groups_not_carried_and_no_reading() -> None:
-    (t,) = omnitiles.Decoder(source="tile", layouts="pos7", typed=True).feed(POS7)
+    (t,) = omnitiles.Decoder(source="tile", layouts="pos7").feed(POS7)
     assert (t.m1_pos, t.m2_pos) == (2000, None)  # 0xffff: no reading
     assert t.uwb is None and t.tof is None and t.imu is None and t.m1_adcs is None
     assert "uwb" not in t and "m2_pos" in t
     with pytest.raises(KeyError):
         t["uwb"]
     assert t.to_dict() == {"offset": 0, "len": 7, "type": "telemetry", "layout": "pos7", "m1_pos": 2000, "m2_pos": None}
-    (u,) = omnitiles.Decoder(source="tile", layouts="uwb15", typed=True).feed(UWB15)
+    (u,) = omnitiles.Decoder(source="tile", layouts="uwb15").feed(UWB15)
     assert u.uwb == (1500, 2500, None, 3000) and "tof" not in u
 
 
 def test_repr_eq_and_immutability() -> None:
-    (t,) = omnitiles.Decoder(source="tile", layouts="uwb15", typed=True).feed(UWB15)
+    (t,) = omnitiles.Decoder(source="tile", layouts="uwb15").feed(UWB15)
     assert repr(t) == (
         "Telemetry(offset=0, len=15, layout='uwb15', m1_pos=2000, m2_pos=1000, uwb=(1500, 2500, None, 3000))"
     )
-    (same,) = omnitiles.Decoder(source="tile", layouts="uwb15", typed=True).feed(UWB15)
+    (same,) = omnitiles.Decoder(source="tile", layouts="uwb15").feed(UWB15)
     assert t == same and not (t != same)
-    assert t != omnitiles.Decoder(source="tile", layouts="uwb15", typed=True).feed(b"\x00" + UWB15)[0]
+    assert t != omnitiles.Decoder(source="tile", layouts="uwb15").feed(b"\x00" + UWB15)[0]
     assert (t == 3) is False
     with pytest.raises(AttributeError):
         t.m1_pos = 5  # type: ignore[misc]
@@ -94,7 +95,7 @@ def test_repr_eq_and_immutability() -> None:
 def test_imu_compares_bit_patterns() -> None:
     body = bytes([0x60]) + bytes(14) + struct.pack("<6I", 0x7FC00000, 0, 0, 0, 0, 0) + bytes(12)
     frame = b"\xa5" + body + bytes([sum(body) & 0xFF])
-    decoder = omnitiles.Decoder(source="tile", layouts="ble53", typed=True)
+    decoder = omnitiles.Decoder(source="tile", layouts="ble53")
     (a,) = decoder.feed(frame)
     (b,) = decoder.feed(frame)
     assert math.isnan(a.imu.ax) and a.imu == b.imu
@@ -102,37 +103,62 @@ def test_imu_compares_bit_patterns() -> None:
 
 
 def test_other_messages_are_items_with_attributes() -> None:
-    (cmd,) = omnitiles.Decoder(typed=True).feed(bytes.fromhex("a5 70 0a fb 14 89"))
+    (cmd,) = omnitiles.Decoder().feed(bytes.fromhex("a5 70 0a fb 14 89"))
     assert isinstance(cmd, robowire.Item)
     assert (cmd.type, cmd.vx, cmd.vy, cmd.omega, cmd.offset) == ("base_velocity", 10, -5, 20, 0)
     with pytest.raises(AttributeError, match="base_velocity item has no field speed"):
         cmd.speed
-    (report,) = telemetrix.Decoder(source="pico", typed=True).feed(bytes.fromhex("05 0b 09 0a 00 77"))
+    (report,) = telemetrix.Decoder(source="pico").feed(bytes.fromhex("05 0b 09 0a 00 77"))
     assert (report.type, report.trig, report.echo, report.cm) == ("sonar_distance", 9, 10, 119)
-    (result,) = pixy2.Decoder(source="device", typed=True).feed(bytes.fromhex("af c1 01 04 3d 00 3d 00 00 00"))
+    (result,) = pixy2.Decoder(source="device").feed(bytes.fromhex("af c1 01 04 3d 00 3d 00 00 00"))
     assert (result.type, result.value, result.checksum) == ("result", 61, True)
-    (bad, ping) = omnitiles.Decoder(source="host", typed=True, errors=True).feed(bytes.fromhex("a5 30 c8 f7 a5 50 50"))
+    (bad, ping) = omnitiles.Decoder(source="host", errors=True).feed(bytes.fromhex("a5 30 c8 f7 a5 50 50"))
     assert (bad.error, bad.expected, bad.found) == ("checksum", 0xF8, 0xF7)
     assert ping.type == "ping"
 
 
 def test_typed_items_encode_back() -> None:
     data = CASES[0].input()
-    for item in omnitiles.Decoder(typed=True).feed(data):
+    for item in omnitiles.Decoder().feed(data):
         assert omnitiles.encode(item) == data[item.offset : item.offset + item.len]
-    (report,) = telemetrix.Decoder(source="pico", typed=True).feed(bytes.fromhex("04 03 1a 04 c9"))
+    (report,) = telemetrix.Decoder(source="pico").feed(bytes.fromhex("04 03 1a 04 c9"))
     assert telemetrix.encode(report) == bytes.fromhex("04 03 1a 04 c9")
 
 
 def test_options() -> None:
-    decoder = omnitiles.Decoder(source="tile", typed=True)
-    assert decoder.typed and not decoder.lazy
-    assert "typed=True" in repr(decoder)
-    assert omnitiles.DatagramDecoder(typed=True).typed
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        decoder = omnitiles.Decoder(source="tile")
+        assert decoder.typed and not decoder.lazy
+        assert repr(decoder) == 'robowire.omnitiles.Decoder(source="tile")'
+        assert omnitiles.DatagramDecoder().typed
+        for make in (omnitiles.Decoder, omnitiles.DatagramDecoder, pixy2.Decoder, telemetrix.Decoder):
+            dicts = make(typed=False)
+            assert not dicts.typed and not dicts.lazy
+            assert repr(dicts).endswith("typed=False)")
+    # The spelling from before typed items were the default still works, with a warning.
+    for make in (omnitiles.Decoder, omnitiles.DatagramDecoder, pixy2.Decoder, telemetrix.Decoder):
+        with pytest.warns(DeprecationWarning, match="typed=True is deprecated: typed items are the default"):
+            assert make(typed=True).typed
     with pytest.raises(ValueError, match="typed=True"):
         telemetrix.Decoder(lazy=True, typed=True)
     with pytest.warns(DeprecationWarning, match="lazy=True is deprecated"):
         assert pixy2.Decoder(lazy=True).lazy
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        assert not omnitiles.Decoder().typed
+
+
+def test_telemetry_and_imu_are_mappings() -> None:
+    data = CASES[0].input()
+    (t, *_) = omnitiles.Decoder(source="tile", layouts="ble53").feed(data)
+    assert isinstance(t, Mapping) and isinstance(t.imu, Mapping)
+    keys = ["offset", "len", "type", "layout", "m1_pos", "m2_pos", "uwb", "tof", "imu", "m1_adcs", "m2_adcs"]
+    assert list(t) == t.keys() == keys and len(t) == len(keys)
+    assert t.values() == [t[key] for key in keys]
+    assert t.items() == list(zip(keys, t.values()))
+    assert dict(t) == dict(t.items()) and dict(t)["imu"] is not None
+    assert 5 not in t and None not in t and "tof" in t
+    imu = t.imu
+    assert list(imu) == ["ax", "ay", "az", "gx", "gy", "gz"] and len(imu) == 6
+    assert dict(imu) == imu.to_dict() and imu.values() == [imu[k] for k in imu]
+    assert 0 not in imu
+    (short,) = omnitiles.Decoder(source="tile", layouts="pos7").feed(POS7)
+    assert list(short) == ["offset", "len", "type", "layout", "m1_pos", "m2_pos"] and "imu" not in short

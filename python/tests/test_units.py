@@ -32,7 +32,7 @@ def test_telemetry_and_imu_say_their_units() -> None:
 
 
 def test_positions_in_mm_are_the_sdks_formula_bit_for_bit() -> None:
-    decoder = omnitiles.Decoder(typed=True)
+    decoder = omnitiles.Decoder()
     items = decoder.feed((DATA / "ble_telemetry.bin").read_bytes()) + decoder.finish()
     telemetry = [t for t in items if isinstance(t, omnitiles.Telemetry)]
     assert len(telemetry) == 298
@@ -41,7 +41,7 @@ def test_positions_in_mm_are_the_sdks_formula_bit_for_bit() -> None:
         assert t.m1_pos_mm == t.m1_pos / 4095 * 150
         assert t.m2_pos_mm == t.m2_pos / 4095 * 100
     # No reading: no position in mm either.
-    (t,) = omnitiles.Decoder(layouts=["pos7"], typed=True).feed(POS7)
+    (t,) = omnitiles.Decoder(layouts=["pos7"]).feed(POS7)
     assert t.m1_pos == 2000 and t.m2_pos is None
     assert t.m1_pos_mm == 2000 / 4095 * 150 and t.m2_pos_mm is None
 

@@ -33,14 +33,14 @@ FRAME = ble53(IMU_BITS, [1500, 0xFFFF, 3500, 4500], 0xFFFF)
 
 def test_f32_is_its_exact_value() -> None:
     frame = ble53([0x3DCCCCCD] * 6, [1, 2, 3, 4], 5)  # 0.1f32
-    (item,) = omnitiles.Decoder(source="tile", layouts="ble53").feed(frame)
+    (item,) = omnitiles.Decoder(source="tile", layouts="ble53", typed=False).feed(frame)
     assert item["imu"]["ax"] == 0.10000000149011612
     assert type(item["imu"]["ax"]) is float
 
 
 def test_non_finite_and_no_reading_are_python_values() -> None:
     assert len(FRAME) == 53
-    (item,) = omnitiles.Decoder(source="tile", layouts="ble53").feed(FRAME)
+    (item,) = omnitiles.Decoder(source="tile", layouts="ble53", typed=False).feed(FRAME)
     imu = item["imu"]
     assert [f32_bits(imu[k]) for k in ("ax", "ay", "az", "gx", "gy", "gz")] == IMU_BITS
     assert all(isinstance(v, float) for v in imu.values())
@@ -53,7 +53,7 @@ def test_non_finite_and_no_reading_are_python_values() -> None:
 
 
 def test_native_values_encode_back_bit_for_bit() -> None:
-    (item,) = omnitiles.Decoder(source="tile", layouts="ble53").feed(FRAME)
+    (item,) = omnitiles.Decoder(source="tile", layouts="ble53", typed=False).feed(FRAME)
     assert omnitiles.encode(item) == FRAME
 
 
@@ -68,12 +68,12 @@ def test_native_values_are_the_tools_text(tmp_path: Path) -> None:
     )
     (line,) = [json.loads(text) for text in run.stdout.decode().splitlines()]
     assert line["imu"]["ax"] == "nan:0x7fc00000" and line["imu"]["az"] == "inf"
-    (item,) = omnitiles.Decoder(source="tile", layouts="ble53").feed(FRAME)
+    (item,) = omnitiles.Decoder(source="tile", layouts="ble53", typed=False).feed(FRAME)
     assert_same_item(item, line)
 
 
 def test_encode_refuses_a_float_out_of_f32_range() -> None:
-    (item,) = omnitiles.Decoder(source="tile", layouts="ble53").feed(FRAME)
+    (item,) = omnitiles.Decoder(source="tile", layouts="ble53", typed=False).feed(FRAME)
     item["imu"]["az"] = 1e39
     with pytest.raises(ValueError, match="imu.az"):
         omnitiles.encode(item)
