@@ -7,7 +7,7 @@ use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList};
 
 use crate::array::Tables;
-use crate::engine::{stats_dict, with_bytes, Engine, Form, Items};
+use crate::engine::{detached_from_size, stats_dict, with_bytes, Engine, Form, Items};
 
 /// The stream decoder every protocol's ``Decoder`` is: feed it bytes as they
 /// arrive, in chunks of any size, and it returns the decoded items.
@@ -75,7 +75,10 @@ impl PyStreamDecoder {
                 ))
             })?;
         let mut tables = Tables::default();
-        with_bytes(data, |bytes| self.engine.feed_table(bytes, &mut tables))??;
+        let engine = &mut self.engine;
+        with_bytes(data, |bytes| {
+            detached_from_size(py, bytes.len(), || engine.feed_table(bytes, &mut tables))
+        })??;
         tables.into_arrays(py)
     }
 
@@ -94,7 +97,10 @@ impl PyStreamDecoder {
     /// difference).
     #[pyo3(signature = (data, /))]
     fn _count(&mut self, data: &Bound<'_, PyAny>) -> PyResult<usize> {
-        with_bytes(data, |bytes| self.engine.count(bytes))
+        let engine = &mut self.engine;
+        with_bytes(data, |bytes| {
+            detached_from_size(data.py(), bytes.len(), || engine.count(bytes))
+        })
     }
 
     /// Forget a buffered partial frame (its bytes count as skipped), for
