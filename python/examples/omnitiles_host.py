@@ -22,9 +22,7 @@ import asyncio
 import os
 import sys
 import tty
-from typing import Any
-
-from robowire import omnitiles
+from robowire import Item, Stats, omnitiles
 
 
 class SimulatedTile:
@@ -36,7 +34,7 @@ class SimulatedTile:
         self.period = 1.0 / rate
         self.m1_pos = 1000
         self.m1_speed = 0
-        self.commands: list[Any] = []
+        self.commands: list[Item] = []
         self.decoder = omnitiles.Decoder(source="host")
 
     def telemetry(self, n: int) -> bytes:
@@ -91,7 +89,7 @@ class SimulatedTile:
             loop.remove_reader(self.fd)
 
 
-async def host(port: str, frames: int) -> tuple[list[dict[str, Any]], dict[str, int]]:
+async def host(port: str, frames: int) -> tuple[list[omnitiles.Telemetry], Stats]:
     """The host: read the port, decode telemetry, steer motor 1."""
     loop = asyncio.get_running_loop()
     fd = os.open(port, os.O_RDWR | os.O_NOCTTY)
@@ -113,7 +111,8 @@ async def host(port: str, frames: int) -> tuple[list[dict[str, Any]], dict[str, 
                 if not extended and len(seen) >= 5:
                     os.write(fd, omnitiles.encode({"type": "m1_extend", "speed": 200}))
                     extended = True
-                elif extended and not braked and telemetry.m1_pos >= 1020:
+                # m1_pos is None when the tile reports no reading (0xFFFF).
+                elif extended and not braked and (telemetry.m1_pos or 0) >= 1020:
                     os.write(fd, omnitiles.encode({"type": "m1_brake"}))
                     braked = True
     finally:
@@ -123,7 +122,7 @@ async def host(port: str, frames: int) -> tuple[list[dict[str, Any]], dict[str, 
 
 
 async def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0])
     parser.add_argument("--frames", type=int, default=200, help="telemetry frames the tile sends")
     parser.add_argument("--rate", type=float, default=400.0, help="frames per second (a tile sends up to 40)")
     args = parser.parse_args()
@@ -138,14 +137,15 @@ async def main() -> int:
         os.close(slave)
         os.close(master)
 
-    positions = [t.m1_pos for t in seen]
+    positions = [t.m1_pos for t in seen if t.m1_pos is not None]
     print(f"host: {len(seen)} telemetry frames from {port}; m1_pos {positions[0]} -> {max(positions)}")
     print(f"host: first frame {seen[0]}")
     print(f"host: stats {stats}")
     print(f"tile: commands {[c.type for c in tile.commands]}")
     ok = (
         len(seen) == args.frames
-        and [t.uwb[0] for t in seen] == [1500 + n for n in range(args.frames)]
+        and [t.uwb[0] if t.uwb else None for t in seen] == [1500 + n for n in range(args.frames)]
+        and seen[0].imu is not None  # the 53-byte layout carries the IMU
         and seen[0].imu.az == 9.800000190734863  # 9.8 as the wire's f32 carries it
         and stats["checksum_failures"] == 1
         and [c.type for c in tile.commands] == ["m1_extend", "m1_brake"]

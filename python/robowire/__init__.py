@@ -21,14 +21,17 @@ the JSON-lines schema of the ``robowire`` command-line tool::
     'a5 30 c8 f8'
 
 A decoder made with ``typed=False`` returns those dicts instead; ``encode``
-takes either.
+takes either. ``decoder.stats`` is a :class:`Stats` dict of link-quality
+counters. The type stubs make each decoder generic in its items
+(``omnitiles.Decoder[omnitiles.Telemetry]`` for ``source="tile"``).
 """
 
 from collections.abc import Mapping as _Mapping
 
 from ._robowire import Item, StreamDecoder, __version__
+from ._stats import Stats
 from . import omnitiles, pixy2, telemetrix
 
 _Mapping.register(Item)
 
-__all__ = ["Item", "StreamDecoder", "omnitiles", "pixy2", "telemetrix", "__version__"]
+__all__ = ["Item", "Stats", "StreamDecoder", "omnitiles", "pixy2", "telemetrix", "__version__"]

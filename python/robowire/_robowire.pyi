@@ -1,9 +1,7 @@
 """The compiled core of :mod:`robowire` (import from ``robowire`` instead)."""
 
 from collections.abc import Iterator, KeysView, ItemsView, Mapping, ValuesView
-from typing import Any, Union
-
-from typing_extensions import TypeAlias, disjoint_base, final
+from typing import Any, Generic, TypeVar, Union, final
 
 from . import omnitiles as omnitiles, pixy2 as pixy2, telemetrix as telemetrix
 from ._stats import Stats
@@ -11,7 +9,10 @@ from ._stats import Stats
 __all__ = ["Item", "StreamDecoder", "__version__", "omnitiles", "pixy2", "telemetrix"]
 __version__: str
 
-_Bytes: TypeAlias = Union[bytes, bytearray, memoryview]
+# The stubs import only `typing` (Python 3.9's): they need no
+# typing_extensions, which the package does not depend on.
+
+_Bytes = Union[bytes, bytearray, memoryview]
 """What the decoders take: ``bytes``, ``bytearray`` or ``memoryview``."""
 
 @final
@@ -39,12 +40,14 @@ class Item(Mapping[str, Any]):
     def __len__(self) -> int: ...
     def __getattr__(self, name: str) -> Any: ...
 
-_Decoded: TypeAlias = Any
-"""A decoded item: an :class:`Item` or a :class:`robowire.omnitiles.Telemetry`
-(the default), or with ``typed=False`` a dict in the JSON-lines schema."""
+_Dict = dict[str, Any]
+"""An item of a ``typed=False`` decoder: a dict in the JSON-lines schema."""
 
-@disjoint_base
-class StreamDecoder:
+_T_co = TypeVar("_T_co", covariant=True)
+"""What a decoder's items are: each protocol's ``Decoder`` constructor picks it
+from its ``source``, ``errors`` and ``typed`` options."""
+
+class StreamDecoder(Generic[_T_co]):
     """The stream decoder every protocol's ``Decoder`` is.
 
     Feed it bytes as they arrive, in chunks of any size; it returns the
@@ -53,9 +56,9 @@ class StreamDecoder:
     rejections: ``offset``, then ``error`` and its keys).
     """
 
-    def feed(self, data: _Bytes, /) -> list[_Decoded]:
+    def feed(self, data: _Bytes, /) -> list[_T_co]:
         """Decode the next chunk; the items it completes, in stream order."""
-    def finish(self) -> list[_Decoded]:
+    def finish(self) -> list[_T_co]:
         """End of input: the items a buffered partial frame resolves to."""
     def clear(self) -> None:
         """Forget a buffered partial frame (its bytes count as skipped)."""

@@ -1,19 +1,18 @@
 """OmniTiles: host commands and tile telemetry (``a5``, id, payload, sum)."""
 
 from collections.abc import Iterable, Iterator, Mapping
-from typing import Any, ClassVar, Literal, Optional, TypedDict, Union
+from typing import Any, ClassVar, Generic, Literal, Optional, TypedDict, TypeVar, Union, final, overload
 
-from typing_extensions import Self, TypeAlias, final
-
-from ._robowire import StreamDecoder, _Bytes, _Decoded
+from ._robowire import Item, StreamDecoder, _Bytes, _Dict
 from ._stats import Stats
 
-_Source: TypeAlias = Literal["tile", "host", "any"]
-_Layouts: TypeAlias = Union[str, Iterable[str], None]
+_Source = Literal["tile", "host", "any"]
+_Layouts = Union[str, Iterable[str], None]
+_T_co = TypeVar("_T_co", covariant=True)
 
-__all__ = ["Decoder", "DatagramDecoder", "Imu", "Telemetry", "encode"]
+__all__ = ["Decoder", "DatagramDecoder", "FieldInfo", "Imu", "Telemetry", "encode", "field_info"]
 
-_Layout: TypeAlias = Literal["pos7", "uwb15", "uwbtof17", "spi45", "ble53"]
+_Layout = Literal["pos7", "uwb15", "uwbtof17", "spi45", "ble53"]
 
 class FieldInfo(TypedDict):
     """What a field means, from the library's field table."""
@@ -123,8 +122,10 @@ class Telemetry(Mapping[str, Any]):
     def __contains__(self, key: object, /) -> bool: ...
 
 @final
-class Decoder(StreamDecoder):
-    """The OmniTiles stream decoder.
+class Decoder(StreamDecoder[_T_co]):
+    """The OmniTiles stream decoder, generic in its items: ``Decoder[Telemetry]``
+    for ``source="tile"``, ``Decoder[Item]`` for ``"host"``, ``Decoder[dict[str,
+    Any]]`` with ``typed=False``; rejections (``errors=True``) are :class:`Item`.
 
     ``source``: ``"tile"`` (telemetry only), ``"host"`` (commands only) or
     ``"any"`` (both). ``layouts``: telemetry layouts to accept, a list or a
@@ -132,6 +133,44 @@ class Decoder(StreamDecoder):
     ``spi45``, ``auto`` (default: ``auto``, the four the SDK documents).
     """
 
+    @overload
+    def __new__(
+        cls,
+        source: Literal["tile"],
+        layouts: _Layouts = None,
+        errors: Literal[False] = False,
+        lazy: Literal[False] = False,
+        typed: Optional[Literal[True]] = None,
+    ) -> Decoder[Telemetry]: ...
+    @overload
+    def __new__(
+        cls,
+        source: Literal["host"],
+        layouts: _Layouts = None,
+        errors: bool = False,
+        lazy: bool = False,
+        typed: Optional[Literal[True]] = None,
+    ) -> Decoder[Item]: ...
+    @overload
+    def __new__(
+        cls,
+        source: _Source = "any",
+        layouts: _Layouts = None,
+        errors: bool = False,
+        lazy: Literal[False] = False,
+        *,
+        typed: Literal[False],
+    ) -> Decoder[_Dict]: ...
+    @overload
+    def __new__(
+        cls,
+        source: _Source = "any",
+        layouts: _Layouts = None,
+        errors: bool = False,
+        lazy: Literal[False] = False,
+        typed: Optional[Literal[True]] = None,
+    ) -> Decoder[Union[Telemetry, Item]]: ...
+    @overload
     def __new__(
         cls,
         source: _Source = "any",
@@ -139,12 +178,51 @@ class Decoder(StreamDecoder):
         errors: bool = False,
         lazy: bool = False,
         typed: Optional[bool] = None,
-    ) -> Self: ...
+    ) -> Decoder[Union[Telemetry, Item, _Dict]]: ...
 
 @final
-class DatagramDecoder:
-    """Decodes one whole datagram (a BLE notification or write, an SPI buffer) per call."""
+class DatagramDecoder(Generic[_T_co]):
+    """Decodes one whole datagram (a BLE notification or write, an SPI buffer) per call;
+    its items as for :class:`Decoder`."""
 
+    @overload
+    def __new__(
+        cls,
+        source: Literal["tile"],
+        layouts: _Layouts = None,
+        errors: Literal[False] = False,
+        lazy: Literal[False] = False,
+        typed: Optional[Literal[True]] = None,
+    ) -> DatagramDecoder[Telemetry]: ...
+    @overload
+    def __new__(
+        cls,
+        source: Literal["host"],
+        layouts: _Layouts = None,
+        errors: bool = False,
+        lazy: bool = False,
+        typed: Optional[Literal[True]] = None,
+    ) -> DatagramDecoder[Item]: ...
+    @overload
+    def __new__(
+        cls,
+        source: _Source = "any",
+        layouts: _Layouts = None,
+        errors: bool = False,
+        lazy: Literal[False] = False,
+        *,
+        typed: Literal[False],
+    ) -> DatagramDecoder[_Dict]: ...
+    @overload
+    def __new__(
+        cls,
+        source: _Source = "any",
+        layouts: _Layouts = None,
+        errors: bool = False,
+        lazy: Literal[False] = False,
+        typed: Optional[Literal[True]] = None,
+    ) -> DatagramDecoder[Union[Telemetry, Item]]: ...
+    @overload
     def __new__(
         cls,
         source: _Source = "any",
@@ -152,8 +230,8 @@ class DatagramDecoder:
         errors: bool = False,
         lazy: bool = False,
         typed: Optional[bool] = None,
-    ) -> Self: ...
-    def decode(self, datagram: _Bytes, /) -> list[_Decoded]:
+    ) -> DatagramDecoder[Union[Telemetry, Item, _Dict]]: ...
+    def decode(self, datagram: _Bytes, /) -> list[_T_co]:
         """The items of one datagram, in order."""
     @property
     def stats(self) -> Stats: ...

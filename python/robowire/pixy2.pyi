@@ -1,19 +1,19 @@
 """Pixy2: host requests and device responses (``ae c1`` / ``af c1`` frames)."""
 
 from collections.abc import Mapping
-from typing import Any, Literal, Optional
+from typing import Any, Literal, Optional, TypeVar, Union, final, overload
 
-from typing_extensions import Self, TypeAlias, final
-
-from ._robowire import StreamDecoder, _Bytes, _Decoded
+from ._robowire import Item, StreamDecoder, _Dict
 from .omnitiles import FieldInfo
 
-_Source: TypeAlias = Literal["host", "device", "any"]
+_Source = Literal["host", "device", "any"]
 
-__all__ = ["Decoder", "encode"]
+__all__ = ["Decoder", "encode", "field_info"]
+
+_T_co = TypeVar("_T_co", covariant=True)
 
 @final
-class Decoder(StreamDecoder):
+class Decoder(StreamDecoder[_T_co]):
     """The Pixy2 stream decoder.
 
     ``source``: ``"device"`` (responses only: what a host reads), ``"host"``
@@ -22,6 +22,26 @@ class Decoder(StreamDecoder):
     Pixy2 always answers.
     """
 
+    @overload
+    def __new__(
+        cls,
+        source: _Source = "any",
+        checksum_only: bool = False,
+        errors: bool = False,
+        lazy: Literal[False] = False,
+        *,
+        typed: Literal[False],
+    ) -> Decoder[_Dict]: ...
+    @overload
+    def __new__(
+        cls,
+        source: _Source = "any",
+        checksum_only: bool = False,
+        errors: bool = False,
+        lazy: bool = False,
+        typed: Optional[Literal[True]] = None,
+    ) -> Decoder[Item]: ...
+    @overload
     def __new__(
         cls,
         source: _Source = "any",
@@ -29,7 +49,7 @@ class Decoder(StreamDecoder):
         errors: bool = False,
         lazy: bool = False,
         typed: Optional[bool] = None,
-    ) -> Self: ...
+    ) -> Decoder[Union[Item, _Dict]]: ...
 
 def encode(message: Mapping[str, Any], /) -> bytes:
     """The frame of one request or response (a dict in the JSON-lines schema).

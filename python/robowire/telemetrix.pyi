@@ -1,20 +1,20 @@
 """Telemetrix4RpiPico: host commands and Pico reports (LEN, id, payload)."""
 
 from collections.abc import Mapping
-from typing import Any, Literal, Optional
+from typing import Any, Literal, Optional, TypeVar, Union, final, overload
 
-from typing_extensions import Self, TypeAlias, final
-
-from ._robowire import StreamDecoder, _Bytes, _Decoded
+from ._robowire import Item, StreamDecoder, _Dict
 from .omnitiles import FieldInfo
 
-_Source: TypeAlias = Literal["host", "pico", "any"]
-_Dialect: TypeAlias = Literal["mirte13", "mirte12", "upstream11"]
+_Source = Literal["host", "pico", "any"]
+_Dialect = Literal["mirte13", "mirte12", "upstream11"]
 
-__all__ = ["Decoder", "encode"]
+__all__ = ["Decoder", "encode", "field_info"]
+
+_T_co = TypeVar("_T_co", covariant=True)
 
 @final
-class Decoder(StreamDecoder):
+class Decoder(StreamDecoder[_T_co]):
     """The Telemetrix stream decoder.
 
     ``source``: ``"pico"`` (reports only: what a host reads), ``"host"``
@@ -24,6 +24,28 @@ class Decoder(StreamDecoder):
     ``unknown_report`` when a valid report follows directly.
     """
 
+    @overload
+    def __new__(
+        cls,
+        source: _Source = "any",
+        dialect: _Dialect = "mirte13",
+        lenient: bool = False,
+        errors: bool = False,
+        lazy: Literal[False] = False,
+        *,
+        typed: Literal[False],
+    ) -> Decoder[_Dict]: ...
+    @overload
+    def __new__(
+        cls,
+        source: _Source = "any",
+        dialect: _Dialect = "mirte13",
+        lenient: bool = False,
+        errors: bool = False,
+        lazy: bool = False,
+        typed: Optional[Literal[True]] = None,
+    ) -> Decoder[Item]: ...
+    @overload
     def __new__(
         cls,
         source: _Source = "any",
@@ -32,7 +54,7 @@ class Decoder(StreamDecoder):
         errors: bool = False,
         lazy: bool = False,
         typed: Optional[bool] = None,
-    ) -> Self: ...
+    ) -> Decoder[Union[Item, _Dict]]: ...
 
 def encode(message: Mapping[str, Any], /, dialect: _Dialect = "mirte13") -> bytes:
     """The frame of one command or report (a dict in the JSON-lines schema) for ``dialect``.

@@ -4,7 +4,7 @@
 use pyo3::exceptions::PyImportError;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyType};
 
 use crate::array::Tables;
 use crate::engine::{detached_from_size, stats_dict, with_bytes, Engine, Form, Items};
@@ -151,4 +151,26 @@ impl PyStreamDecoder {
     fn __repr__(&self) -> String {
         self.repr.clone()
     }
+
+    /// ``Decoder[Telemetry]``: the class with its item type, for annotations
+    /// (the type stubs make every decoder generic in its items).
+    #[classmethod]
+    fn __class_getitem__<'py>(
+        cls: &Bound<'py, PyType>,
+        item: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        generic_alias(cls, item)
+    }
+}
+
+/// `types.GenericAlias(cls, item)`, what `list[int]` is.
+pub fn generic_alias<'py>(
+    cls: &Bound<'py, PyType>,
+    item: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let py = cls.py();
+    static ALIAS: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+    ALIAS
+        .import(py, "types", "GenericAlias")?
+        .call1((cls, item))
 }

@@ -2,14 +2,14 @@
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyList, PyString};
+use pyo3::types::{PyBytes, PyList, PyString, PyType};
 use robowire::omnitiles::{
     Both, DatagramDecoder, Device, Framing, Host, Layouts, Message, Side, BOTH_BUFFER,
     DEVICE_BUFFER, HOST_BUFFER,
 };
 use robowire::{Stats, StreamDecoder};
 
-use crate::decoder::PyStreamDecoder;
+use crate::decoder::{generic_alias, PyStreamDecoder};
 use crate::engine::{
     append, bad_choice, encode_frame, encode_with, stats_dict, with_bytes, Engine, Form, Items,
     Stream,
@@ -234,6 +234,16 @@ impl OmniDatagramDecoder {
 
     fn __repr__(&self) -> String {
         self.repr.clone()
+    }
+
+    /// ``DatagramDecoder[Telemetry]``, for annotations (see
+    /// :meth:`robowire.StreamDecoder.__class_getitem__`).
+    #[classmethod]
+    fn __class_getitem__<'py>(
+        cls: &Bound<'py, PyType>,
+        item: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        generic_alias(cls, item)
     }
 }
 

@@ -1,0 +1,25 @@
+"""A user's mistakes the type stubs catch: mypy --strict and pyright --strict
+must each report an error on every line marked ``# mistake`` and on no other
+(test_types.py); never run."""
+
+from __future__ import annotations
+
+from robowire import omnitiles, telemetrix
+
+tile = omnitiles.Decoder(source="tile")
+for t in tile.feed(b""):
+    az: float = t.imu.az  # mistake: imu is None in the 7, 15 and 17-byte layouts
+    pos: int = t.m1_pos  # mistake: 0xFFFF (no reading) is None
+    imu: int = t.imu  # mistake: an Imu, not an int
+    t.m1_pos = 5  # mistake: items are read-only
+    tof_cm = t.tof / 10  # mistake: tof may be None
+
+dicts = omnitiles.Decoder(source="tile", typed=False)
+for d in dicts.feed(b""):
+    d.m1_pos  # mistake: a dict has keys, not attributes
+
+stats = tile.stats
+checksum = stats["checksum_errors"]  # mistake: the 0.2 name, deprecated
+omnitiles.Decoder(source="pico")  # mistake: the Pico is telemetrix's source
+telemetrix.Decoder(dialect="mirte14")  # mistake: no such dialect
+tile.feed("a5 30 c8 f8")  # mistake: text, not bytes

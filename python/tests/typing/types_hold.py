@@ -1,0 +1,44 @@
+"""What the type stubs promise, checked by mypy --strict and pyright --strict
+(test_types.py); never run. Every line must type-check."""
+
+from __future__ import annotations
+
+from typing import Any, Optional, Union, assert_type
+
+from robowire import Item, Stats, StreamDecoder, omnitiles, pixy2, telemetrix
+
+CHUNK = b"\xa5"
+
+tile = omnitiles.Decoder(source="tile", layouts=["ble53"])
+assert_type(tile, omnitiles.Decoder[omnitiles.Telemetry])
+assert_type(tile.feed(CHUNK), list[omnitiles.Telemetry])
+assert_type(tile.finish(), list[omnitiles.Telemetry])
+for t in tile.feed(CHUNK):
+    assert_type(t.m1_pos, Optional[int])
+    assert_type(t.m1_pos_mm, Optional[float])
+    if t.imu is not None:
+        assert_type(t.imu.az, float)
+    if t.uwb is not None:
+        assert_type(t.uwb[3], Optional[int])
+
+assert_type(omnitiles.Decoder(source="tile", errors=True).feed(CHUNK), list[Union[omnitiles.Telemetry, Item]])
+assert_type(omnitiles.Decoder(source="host").feed(CHUNK), list[Item])
+assert_type(omnitiles.Decoder().feed(CHUNK), list[Union[omnitiles.Telemetry, Item]])
+assert_type(omnitiles.Decoder(source="tile", typed=False).feed(CHUNK), list[dict[str, Any]])
+assert_type(omnitiles.DatagramDecoder(source="tile").decode(CHUNK), list[omnitiles.Telemetry])
+assert_type(omnitiles.DatagramDecoder(typed=False).decode(CHUNK), list[dict[str, Any]])
+
+assert_type(pixy2.Decoder(source="device").feed(CHUNK), list[Item])
+assert_type(pixy2.Decoder(typed=False).feed(CHUNK), list[dict[str, Any]])
+assert_type(telemetrix.Decoder(source="pico").feed(CHUNK), list[Item])
+assert_type(telemetrix.Decoder(source="pico", typed=False).feed(CHUNK), list[dict[str, Any]])
+
+# Every decoder is a StreamDecoder of its items.
+decoder: StreamDecoder[omnitiles.Telemetry] = tile
+stats = tile.stats
+assert_type(stats, Stats)
+assert_type(stats["checksum_failures"], int)
+frame: bytes = omnitiles.encode({"type": "m1_extend", "speed": 200})
+info = omnitiles.field_info("telemetry", "imu.az")
+if info is not None:
+    assert_type(info["unit"], Optional[str])
