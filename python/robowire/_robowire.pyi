@@ -1,7 +1,7 @@
 """The compiled core of :mod:`robowire` (import from ``robowire`` instead)."""
 
 from collections.abc import Iterator, KeysView, ItemsView, Mapping, ValuesView
-from typing import Any, Generic, TypeVar, Union, final
+from typing import Any, ClassVar, Generic, TypeVar, Union, final
 
 from . import omnitiles as omnitiles, pixy2 as pixy2, telemetrix as telemetrix
 from ._stats import Stats
@@ -39,6 +39,8 @@ class Item(Mapping[str, Any]):
     def __iter__(self) -> Iterator[str]: ...
     def __len__(self) -> int: ...
     def __getattr__(self, name: str) -> Any: ...
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    """Unhashable, as the dict it equals; pickles and copies as that dict."""
 
 _Dict = dict[str, Any]
 """An item of a ``typed=False`` decoder: a dict in the JSON-lines schema."""

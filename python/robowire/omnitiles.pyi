@@ -62,6 +62,8 @@ class Imu(Mapping[str, float]):
     def __iter__(self) -> Iterator[str]: ...
     def __len__(self) -> int: ...
     def __contains__(self, key: object, /) -> bool: ...
+    def __hash__(self) -> int:
+        """Equal samples (the same bit patterns) hash alike; pickles and copies exactly."""
 
 @final
 class Telemetry(Mapping[str, Any]):
@@ -76,6 +78,9 @@ class Telemetry(Mapping[str, Any]):
     @property
     def len(self) -> int:
         """The frame's length: 7, 15, 17, 45 or 53."""
+    @property
+    def raw(self) -> bytes:
+        """The frame's bytes as received, start byte to checksum."""
     @property
     def type(self) -> Literal["telemetry"]: ...
     @property
@@ -120,6 +125,8 @@ class Telemetry(Mapping[str, Any]):
         """The dict a ``typed=False`` decoder returns for this frame."""
     def __getitem__(self, key: str, /) -> Any: ...
     def __contains__(self, key: object, /) -> bool: ...
+    def __hash__(self) -> int:
+        """Equal items (the same offset and bytes) hash alike; pickles and copies exactly."""
 
 @final
 class Decoder(StreamDecoder[_T_co]):

@@ -1,7 +1,7 @@
 //! `robowire.StreamDecoder`: the Python base class of every protocol's
 //! `Decoder`, holding one [`Engine`].
 
-use pyo3::exceptions::PyImportError;
+use pyo3::exceptions::{PyImportError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList, PyType};
@@ -152,6 +152,12 @@ impl PyStreamDecoder {
         self.repr.clone()
     }
 
+    /// Refused with a ``TypeError`` that says why: a decoder is the state of
+    /// one live stream (a partial frame, offsets, counters).
+    fn __reduce__(&self) -> PyResult<()> {
+        Err(not_copyable(&self.repr))
+    }
+
     /// ``Decoder[Telemetry]``: the class with its item type, for annotations
     /// (the type stubs make every decoder generic in its items).
     #[classmethod]
@@ -161,6 +167,15 @@ impl PyStreamDecoder {
     ) -> PyResult<Bound<'py, PyAny>> {
         generic_alias(cls, item)
     }
+}
+
+/// The error of pickling or copying a decoder.
+pub fn not_copyable(repr: &str) -> PyErr {
+    PyTypeError::new_err(format!(
+        "{repr} cannot be pickled or copied: a decoder is the state of one live stream \
+         (a partial frame, offsets, counters); make a new decoder with the same options \
+         where it is needed"
+    ))
 }
 
 /// `types.GenericAlias(cls, item)`, what `list[int]` is.

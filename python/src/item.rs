@@ -7,7 +7,7 @@ use pyo3::exceptions::{PyAttributeError, PyKeyError};
 use pyo3::ffi;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
-use pyo3::types::{PyDict, PyIterator, PyString};
+use pyo3::types::{PyDict, PyIterator, PyString, PyTuple};
 use robowire::stream::{OwnedFrame, Rejected};
 use serde::Serialize;
 
@@ -41,6 +41,22 @@ impl<E: Serialize + Send + Sync> Erased for Rejected<E> {
 
     fn to_python<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, self)
+    }
+}
+
+/// An item rebuilt from its dict (unpickled): the dict is the item.
+struct Unpickled {
+    offset: u64,
+    dict: Py<PyDict>,
+}
+
+impl Erased for Unpickled {
+    fn offset(&self) -> u64 {
+        self.offset
+    }
+
+    fn to_python<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        Ok(self.dict.bind(py).clone().into_any())
     }
 }
 
@@ -203,5 +219,28 @@ impl Item {
 
     fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
         Ok(format!("Item({})", self.dict(py)?.repr()?))
+    }
+
+    /// Pickles (and copies) as its dict: the copy is equal to the item and
+    /// to that dict. Unhashable, as the dict it equals is.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        let py = slf.py();
+        let rebuild = slf.get_type().getattr(pyo3::intern!(py, "_from_dict"))?;
+        let args = (slf.get().to_dict(py)?,).into_pyobject(py)?.into_any();
+        PyTuple::new(py, [rebuild, args])
+    }
+
+    /// The item whose dict is ``dict`` (what unpickling calls): its
+    /// ``offset`` key is the item's offset.
+    #[staticmethod]
+    fn _from_dict(dict: Bound<'_, PyDict>) -> PyResult<Self> {
+        let offset = dict
+            .get_item(pyo3::intern!(dict.py(), "offset"))?
+            .ok_or_else(|| PyKeyError::new_err("offset"))?
+            .extract()?;
+        Ok(Self::new(Box::new(Unpickled {
+            offset,
+            dict: dict.unbind(),
+        })))
     }
 }

@@ -9,7 +9,7 @@ use robowire::omnitiles::{
 };
 use robowire::{Stats, StreamDecoder};
 
-use crate::decoder::{generic_alias, PyStreamDecoder};
+use crate::decoder::{generic_alias, not_copyable, PyStreamDecoder};
 use crate::engine::{
     append, bad_choice, encode_frame, encode_with, stats_dict, with_bytes, Engine, Form, Items,
     Stream,
@@ -234,6 +234,12 @@ impl OmniDatagramDecoder {
 
     fn __repr__(&self) -> String {
         self.repr.clone()
+    }
+
+    /// Refused with a ``TypeError`` that says why, as for
+    /// :class:`robowire.StreamDecoder`.
+    fn __reduce__(&self) -> PyResult<()> {
+        Err(not_copyable(&self.repr))
     }
 
     /// ``DatagramDecoder[Telemetry]``, for annotations (see

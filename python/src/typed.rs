@@ -8,14 +8,16 @@
 //! attributes and keys, built (once, as a dict) on the first read.
 
 use pyo3::basic::CompareOp;
-use pyo3::exceptions::PyKeyError;
+use std::hash::{DefaultHasher, Hash, Hasher};
+
+use pyo3::exceptions::{PyKeyError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyIterator, PyList, PyString, PyTuple};
+use pyo3::types::{PyBytes, PyDict, PyIterator, PyList, PyString, PyTuple};
 use robowire::omnitiles::{Imu, Message, Telemetry};
 use robowire::stream::OwnedFrame;
 use serde::Serialize;
 
-use crate::engine::to_python;
+use crate::engine::{encode_frame, to_python};
 use crate::item::Item;
 use crate::schema::exact_f64;
 
@@ -82,6 +84,14 @@ fn compared(py: Python<'_>, equal: Option<bool>, op: CompareOp) -> PyResult<Py<P
         _ => return Ok(py.NotImplemented()),
     };
     Ok(answer.into_pyobject(py)?.to_owned().into_any().unbind())
+}
+
+/// A Python hash of `value` (Rust's `DefaultHasher`, which is not seeded
+/// per process: the same item hashes alike in every run, as an int does).
+fn hash_of<T: Hash>(value: &T) -> u64 {
+    let mut hasher = DefaultHasher::new();
+    value.hash(&mut hasher);
+    hasher.finish()
 }
 
 /// The keys of a telemetry item, in the dict form's order.
@@ -184,6 +194,13 @@ impl PyTelemetry {
             .unwrap_or_else(|| py.None().into_bound(py)))
     }
 
+    /// The frame's bytes. Every byte of each layout is a field (a reading
+    /// can never be `Some(0xFFFF)`), so encoding the fields gives back the
+    /// bytes received, checksum included.
+    fn wire(&self) -> PyResult<Vec<u8>> {
+        encode_frame(&self.telemetry).map_err(PyValueError::new_err)
+    }
+
     /// The frame in the library's form, for the dict form.
     fn frame(&self) -> OwnedFrame<Message> {
         OwnedFrame {
@@ -206,6 +223,12 @@ impl PyTelemetry {
     #[getter]
     fn len(&self) -> usize {
         self.len
+    }
+
+    /// The frame's bytes as they were received, start byte to checksum.
+    #[getter]
+    fn raw<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
+        Ok(PyBytes::new(py, &self.wire()?))
     }
 
     /// ``"telemetry"``.
@@ -389,6 +412,44 @@ impl PyTelemetry {
         compared(py, equal, op)
     }
 
+    /// Hashable, as an immutable value: equal items (the same offset and
+    /// frame bytes) hash alike.
+    fn __hash__(&self) -> PyResult<u64> {
+        Ok(hash_of(&(self.offset, self.wire()?)))
+    }
+
+    /// Pickles as its offset and frame bytes, exactly (NaN payloads too).
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        let py = slf.py();
+        let this = slf.get();
+        let rebuild = slf.get_type().getattr(pyo3::intern!(py, "_from_frame"))?;
+        let args = (this.offset, PyBytes::new(py, &this.wire()?));
+        PyTuple::new(py, [rebuild, args.into_pyobject(py)?.into_any()])
+    }
+
+    /// The item itself: it is immutable.
+    fn __copy__(slf: Bound<'_, Self>) -> Bound<'_, Self> {
+        slf
+    }
+
+    /// The item itself: it is immutable and holds no Python object.
+    fn __deepcopy__<'py>(slf: Bound<'py, Self>, _memo: &Bound<'py, PyAny>) -> Bound<'py, Self> {
+        slf
+    }
+
+    /// The item of one whole telemetry ``frame`` at ``offset`` (what
+    /// unpickling calls); ``ValueError`` if it is no telemetry frame.
+    #[staticmethod]
+    fn _from_frame(offset: u64, frame: &[u8]) -> PyResult<Self> {
+        let telemetry =
+            Telemetry::try_from(frame).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        Ok(Self {
+            offset,
+            len: frame.len(),
+            telemetry,
+        })
+    }
+
     fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
         let mut parts = Vec::new();
         for key in self.keys(py)? {
@@ -444,6 +505,11 @@ impl From<Imu> for PyImu {
 }
 
 impl PyImu {
+    /// The six values' bit patterns, what equality compares.
+    fn bits(&self) -> [u32; 6] {
+        self.imu.to_array().map(f32::to_bits)
+    }
+
     fn value(&self, key: &str) -> Option<f64> {
         Imu::NAMES
             .iter()
@@ -519,6 +585,36 @@ impl PyImu {
             None
         };
         compared(py, equal, op)
+    }
+
+    /// Hashable: equal samples (the same bit patterns) hash alike.
+    fn __hash__(&self) -> u64 {
+        hash_of(&self.bits())
+    }
+
+    /// Pickles as the six values' bit patterns, exactly.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        let py = slf.py();
+        let rebuild = slf.get_type().getattr(pyo3::intern!(py, "_from_bits"))?;
+        let args = (slf.get().bits(),).into_pyobject(py)?.into_any();
+        PyTuple::new(py, [rebuild, args])
+    }
+
+    /// The sample itself: it is immutable.
+    fn __copy__(slf: Bound<'_, Self>) -> Bound<'_, Self> {
+        slf
+    }
+
+    /// The sample itself: it is immutable and holds no Python object.
+    fn __deepcopy__<'py>(slf: Bound<'py, Self>, _memo: &Bound<'py, PyAny>) -> Bound<'py, Self> {
+        slf
+    }
+
+    /// The sample whose six ``f32`` values have these bit patterns (what
+    /// unpickling calls).
+    #[staticmethod]
+    fn _from_bits(bits: [u32; 6]) -> Self {
+        Self::from(Imu::from_array(bits.map(f32::from_bits)))
     }
 
     fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
