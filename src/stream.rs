@@ -878,6 +878,50 @@ impl<F: FrameRules, const N: usize, C: Counter> StreamDecoder<F, N, C> {
         self.emit(step)
     }
 
+    /// The line has gone idle: resolve what is buffered as the end of input
+    /// would, but only where that gives a frame, and keep anything else. A
+    /// frame whose end the framing left open (a short OmniTiles telemetry
+    /// layout that may be a longer one's prefix, which only the next byte
+    /// decides) comes out now instead of when the next frame starts; an
+    /// unfinished frame stays buffered for the rest of its bytes, and
+    /// nothing is rejected. Call it in a loop until it returns `None`.
+    ///
+    /// Call it only when the silence says a frame has ended (a few
+    /// byte-times with no byte at the line's baud rate, or the end of a
+    /// datagram that holds whole frames): a sender writes each frame back
+    /// to back, so a short frame taken at a pause is no prefix. Called
+    /// between two pieces of one frame, it can take that frame's prefix
+    /// where the prefix happens to pass as a shorter frame.
+    ///
+    /// ```
+    /// use robowire::omnitiles::{Framing, Host, HOST_BUFFER};
+    /// use robowire::StreamDecoder;
+    /// let mut decoder = StreamDecoder::<_, HOST_BUFFER>::new(Framing::<Host>::new());
+    /// let pos7 = [0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x22];
+    /// // 7 bytes may be the start of a 15, 17 or 53-byte frame: buffered.
+    /// assert!(decoder.feed(&pos7).next().is_none());
+    /// assert!(decoder.settle().is_some_and(|event| event.is_ok()));
+    /// assert_eq!(decoder.buffered(), 0);
+    /// // Half a frame stays buffered for its rest.
+    /// assert!(decoder.feed(&pos7[..4]).next().is_none());
+    /// assert!(decoder.settle().is_none());
+    /// assert_eq!(decoder.buffered(), 4);
+    /// ```
+    pub fn settle(&mut self) -> Option<Event<'_, F::Message<'_>, F::Error>> {
+        self.apply_pending_drop();
+        if self.len == 0 {
+            return None;
+        }
+        match self.resolve(self.stored(self.len), true) {
+            Verdict::Frame(n) => {
+                // What follows the frame is judged afresh when it completes.
+                self.need = 0;
+                self.emit(Step::Buffered(n))
+            }
+            Verdict::Need(_) | Verdict::Reject(_) | Verdict::Superseded(_) => None,
+        }
+    }
+
     #[inline(always)]
     fn apply_pending_drop(&mut self) {
         let n = self.pending_drop;

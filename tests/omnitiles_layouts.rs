@@ -331,3 +331,88 @@ fn a_53_byte_frame_with_a_zero_tail_is_not_taken_for_padding() {
         }
     }
 }
+
+// ------------------------------------------------------------ settle (idle line)
+
+/// Each frame of a mixed stream sent on its own, with a pause after it (a
+/// BLE notification, or a write followed by silence): `settle` at each
+/// pause hands out every frame at once, where without it each short frame
+/// waits for the next frame's first byte.
+#[test]
+fn settle_at_each_pause_hands_out_every_frame_at_once() {
+    for corruption in [Corruption::Clean, Corruption::Garbage] {
+        let stream = telemetry_stream(7, 400, &DOCUMENTED, corruption);
+        let mut decoder =
+            StreamDecoder::<_, { robowire::omnitiles::HOST_BUFFER }>::new(Framing::<Host>::new());
+        let mut settled = 0;
+        let mut starts = stream.sent.iter().map(|s| s.offset as usize).peekable();
+        let mut at = 0;
+        while at < stream.bytes.len() {
+            starts.next_if(|&s| s <= at);
+            let end = starts.peek().copied().unwrap_or(stream.bytes.len());
+            let mut out: Vec<u64> = decoder
+                .feed(&stream.bytes[at..end])
+                .filter_map(Result::ok)
+                .map(|f| f.offset)
+                .collect();
+            let before_settle = out.len();
+            while let Some(event) = decoder.settle() {
+                if let Ok(frame) = event {
+                    out.push(frame.offset);
+                }
+            }
+            settled += out.len() - before_settle;
+            let stats = decoder.stats();
+            assert_eq!(
+                stats.bytes,
+                stats.frame_bytes + stats.skipped + decoder.buffered() as u64
+            );
+            // Every intact frame that ends in this piece has left by now.
+            for sent in stream.sent.iter().filter(|s| s.intact) {
+                let frame_end = sent.offset as usize + sent.len;
+                if frame_end > at && frame_end <= end {
+                    assert!(
+                        out.contains(&sent.offset),
+                        "{}: the frame at {} waited past its pause",
+                        corruption.name(),
+                        sent.offset
+                    );
+                }
+            }
+            at = end;
+        }
+        // Without `settle` these short frames would have waited.
+        assert!(settled > 0, "{}", corruption.name());
+    }
+}
+
+/// `settle` in the middle of a frame keeps its bytes: the frame completes
+/// when the rest arrives, and nothing is rejected.
+#[test]
+fn settle_inside_a_frame_keeps_it() {
+    let stream = telemetry_stream(11, 50, &[Layout::Ble53], Corruption::Clean);
+    let mut decoder =
+        StreamDecoder::<_, { robowire::omnitiles::HOST_BUFFER }>::new(Framing::<Host>::new());
+    let mut frames = 0;
+    for sent in &stream.sent {
+        let frame = &stream.bytes[sent.offset as usize..][..sent.len];
+        // Cut before the shortest layout's length, so that no piece ends a
+        // frame: after 3 and 6 bytes.
+        for piece in [&frame[..3], &frame[3..6], &frame[6..]] {
+            frames += decoder.feed(piece).filter(Result::is_ok).count();
+            while let Some(event) = decoder.settle() {
+                frames += usize::from(event.is_ok());
+            }
+        }
+    }
+    assert_eq!(frames, stream.sent.len());
+    let stats = decoder.stats();
+    assert_eq!(
+        (
+            stats.checksum_failures,
+            stats.other_rejections,
+            stats.skipped
+        ),
+        (0, 0, 0)
+    );
+}

@@ -254,7 +254,7 @@ pub fn check_stream<F, const N: usize>(
     sizes: &[u8],
 ) -> Run<F::Owned, F::Error>
 where
-    F: FrameRules,
+    F: FrameRules + Clone,
     F::Owned: Debug + PartialEq,
 {
     let whole = decode_chunked(new(), input, &[input.len().max(1)]);
@@ -267,5 +267,46 @@ where
     assert_eq!(whole, pushed, "byte at a time through push");
     let fed = decode_fed(new(), input);
     assert_eq!(whole, fed, "feed/flush iterators");
+    check_settle(new(), input, &sizes);
     whole
+}
+
+/// `settle` after every chunk: it rejects nothing, keeps the counters
+/// adding up, and gives exactly the frame `finish` would give at that point
+/// (or nothing where `finish` would reject).
+pub fn check_settle<F, const N: usize>(mut decoder: StreamDecoder<F, N>, input: &[u8], sizes: &[usize])
+where
+    F: FrameRules + Clone,
+    F::Owned: Debug + PartialEq,
+{
+    let sizes: &[usize] = if sizes.iter().all(|&s| s == 0) { &[1] } else { sizes };
+    let mut pos = 0;
+    for &size in sizes.iter().cycle() {
+        if pos >= input.len() {
+            break;
+        }
+        let end = (pos + size.max(1)).min(input.len());
+        for event in decoder.feed(&input[pos..end]) {
+            check_event(&event, input);
+        }
+        pos = end;
+        loop {
+            let mut probe = decoder.clone();
+            let expected = probe.finish().map(owned_event::<F>).and_then(Result::ok);
+            let failures = decoder.stats().checksum_failures + decoder.stats().other_rejections;
+            let settled = decoder.settle().map(owned_event::<F>);
+            check_counters(&decoder, pos as u64);
+            assert_eq!(
+                failures,
+                decoder.stats().checksum_failures + decoder.stats().other_rejections,
+                "settle rejected something"
+            );
+            let Some(event) = settled else { break };
+            check_event(&event, input);
+            match event {
+                Ok(frame) => assert_eq!(Some(frame), expected, "settle and finish differ"),
+                Err(rejected) => panic!("settle gave a rejection: {rejected:?}"),
+            }
+        }
+    }
 }
