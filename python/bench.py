@@ -32,6 +32,13 @@ Run from the repository root after installing the package (numpy for the
 
     pip install './python[numpy]'
     python python/bench.py            # or: --frames 200000 --repeat 5
+
+``--sdk DIR`` adds the OmniTiles SDK's own parser (its
+``omnitiles.protocol.StreamParser``, imported from ``DIR``, the SDK's
+``sdk/src`` in a checkout of Clue88/OmniTiles) beside
+``robowire.omnitiles.sdk.StreamParser``, both used as the SDK's ``Tile`` uses
+its parser: fed each chunk, every frame kept, in 4 KiB chunks and in 53-byte
+BLE notifications.
 """
 
 from __future__ import annotations
@@ -59,6 +66,7 @@ if not _BUILT:
     sys.path = [p for p in sys.path if os.path.abspath(p or os.curdir) != _HERE]
 
 from robowire import omnitiles, telemetrix  # noqa: E402
+from robowire.omnitiles import sdk  # noqa: E402
 
 CHUNK = 4096
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "data")
@@ -403,7 +411,12 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--frames", type=int, default=200_000, help="frames per stream (default 200000)")
     parser.add_argument("--repeat", type=int, default=5, help="runs per row; the median counts (default 5)")
+    parser.add_argument("--sdk", metavar="DIR", help="the OmniTiles SDK's sdk/src, to time its parser beside ours")
     args = parser.parse_args()
+    sdk_parser = None
+    if args.sdk:
+        sys.path.insert(0, args.sdk)
+        from omnitiles.protocol import StreamParser as sdk_parser  # the SDK's own package
     try:
         import numpy  # noqa: F401
 
@@ -472,6 +485,12 @@ def main() -> int:
         row("dicts, dropped", None, timed(lambda: ours(typed=False).feed, stream, r, keep=False))
         row("dicts, one feed, dropped", None, timed(lambda: ours(typed=False).feed, stream, r, keep=False, chunk=len(stream)))
         row("decoding only (_count)", None, timed(lambda: ours(typed=False)._count, stream, r, count=int))
+        if arrays:  # OmniTiles: the SDK's parser API
+            row("sdk.StreamParser, kept", "", timed(lambda: sdk.StreamParser().feed, stream, r))
+            row("sdk.StreamParser, 53 B chunks, kept", "", timed(lambda: sdk.StreamParser().feed, stream, r, chunk=53))
+            if sdk_parser is not None:
+                row("the SDK's parser, kept", "", timed(lambda: sdk_parser().feed, stream, r))
+                row("the SDK's parser, 53 B chunks, kept", "", timed(lambda: sdk_parser().feed, stream, r, chunk=53))
         if any(frames != args.frames for _, _, (frames, _) in rows):
             print(f"{name}: frame counts differ: {[(l, f) for l, _, (f, _) in rows]}", file=sys.stderr)
             ok = False
@@ -485,6 +504,10 @@ def main() -> int:
                 line += f" {rate[label] / rate['plain Python, kept' + suffix]:>8.1f}x"
                 line += f" {rate[label] / rate['tuned Python, kept' + suffix]:>8.1f}x"
             print(line)
+        if "the SDK's parser, kept" in rate:
+            for suffix in ("", ", 53 B chunks"):
+                ratio = rate[f"sdk.StreamParser{suffix}, kept"] / rate[f"the SDK's parser{suffix}, kept"]
+                print(f"  sdk.StreamParser{suffix} / the SDK's parser: {ratio:.1f}x")
     return 0 if ok else 1
 
 

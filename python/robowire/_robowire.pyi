@@ -62,6 +62,8 @@ class StreamDecoder(Generic[_T_co]):
         """Decode the next chunk; the items it completes, in stream order."""
     def finish(self) -> list[_T_co]:
         """End of input: the items a buffered partial frame resolves to."""
+    def settle(self) -> list[_T_co]:
+        """The line went idle: a buffered frame only the next byte would decide."""
     def clear(self) -> None:
         """Forget a buffered partial frame (its bytes count as skipped)."""
     def feed_array(self, data: _Bytes, /) -> dict[str, Any]:

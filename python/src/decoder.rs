@@ -92,6 +92,20 @@ impl PyStreamDecoder {
         Ok(out)
     }
 
+    /// The line has gone idle (a pause of a few byte-times, or the end of a
+    /// datagram that holds whole frames): return a buffered frame that only
+    /// the next byte would otherwise decide, such as a 7, 15 or 17-byte
+    /// OmniTiles frame that may be a longer layout's start. An unfinished
+    /// frame stays buffered for its rest and nothing is rejected, so it is
+    /// safe to call after every read that was followed by silence. Called
+    /// between two pieces of one frame, it can take a prefix that happens to
+    /// pass as a shorter frame.
+    fn settle<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let out = PyList::empty(py);
+        self.engine.settle(self.items, &out)?;
+        Ok(out)
+    }
+
     /// Decode ``data`` as :meth:`feed` does but build no items: the number of
     /// frames decoded. For benchmarks (the cost of the items is the
     /// difference).

@@ -28,6 +28,9 @@ pub trait Engine: Send + Sync {
     fn feed(&mut self, data: &[u8], items: Items, out: &Bound<'_, PyList>) -> PyResult<()>;
     /// End of input: resolve what is buffered, appending the events to `out`.
     fn finish(&mut self, items: Items, out: &Bound<'_, PyList>) -> PyResult<()>;
+    /// The line went idle: a buffered frame the layouts left open comes out
+    /// (the library's `StreamDecoder::settle`); anything else stays.
+    fn settle(&mut self, items: Items, out: &Bound<'_, PyList>) -> PyResult<()>;
     /// Decode `data` without building any Python object; the number of
     /// frames parsed (what a benchmark compares the full path with).
     fn count(&mut self, data: &[u8]) -> usize;
@@ -71,8 +74,100 @@ pub fn detached_from_size<T: Send>(
     }
 }
 
+/// Decode all of `data` with `decoder`, handing each owned event to `each`
+/// (rejections only with `errors`), which builds its Python object. A chunk
+/// of [`DETACH_FROM`] bytes or more is decoded in batches of [`BATCH`]
+/// events without the GIL, so that other Python threads run meanwhile, and
+/// each batch is then handed out with it. After `each` fails, the rest of
+/// `data` is still taken (and its events dropped), and the error returned.
+pub fn decode_events<R, const N: usize>(
+    py: Python<'_>,
+    decoder: &mut StreamDecoder<R, N>,
+    data: &[u8],
+    errors: bool,
+    mut each: impl FnMut(OwnedEvent<R>) -> PyResult<()>,
+) -> PyResult<()>
+where
+    R: FrameRules + Send,
+    R::Owned: Send,
+    R::Error: Send,
+{
+    let mut input = data;
+    let mut result = Ok(());
+    if data.len() < DETACH_FROM {
+        while let Some(event) = decoder.decode(&mut input) {
+            if result.is_ok() && (errors || event.is_ok()) {
+                result = each(owned_event::<R>(event));
+            }
+        }
+        return result;
+    }
+    loop {
+        let batch = py.detach(|| {
+            let mut batch = Vec::with_capacity(BATCH);
+            while batch.len() < BATCH {
+                match decoder.decode(&mut input) {
+                    Some(Err(_)) if !errors => {}
+                    Some(event) => batch.push(owned_event::<R>(event)),
+                    None => break,
+                }
+            }
+            batch
+        });
+        let full = batch.len() == BATCH;
+        for event in batch {
+            if result.is_ok() {
+                result = each(event);
+            }
+        }
+        if !full {
+            return result;
+        }
+    }
+}
+
 /// [`Engine`] for robowire's [`StreamDecoder`] over framing `R`.
 pub struct Stream<R, const N: usize>(pub StreamDecoder<R, N>);
+
+/// How the buffered bytes are resolved without new input.
+#[derive(Debug, Clone, Copy)]
+pub enum Resolve {
+    /// End of input (`finish`): everything, a cut frame rejected.
+    Finish,
+    /// The line went idle (`settle`): only what gives a frame.
+    Settle,
+}
+
+impl Resolve {
+    /// The next owned event this resolves from `decoder`.
+    pub fn next<R: FrameRules, const N: usize>(
+        self,
+        decoder: &mut StreamDecoder<R, N>,
+    ) -> Option<OwnedEvent<R>> {
+        match self {
+            Resolve::Finish => decoder.finish().map(owned_event::<R>),
+            Resolve::Settle => decoder.settle().map(owned_event::<R>),
+        }
+    }
+}
+
+impl<R, const N: usize> Stream<R, N>
+where
+    R: FrameRules,
+    R::Owned: Typed,
+    R::Error: Serialize + Send + Sync + 'static,
+{
+    /// Append the events that `how` resolves from what is buffered.
+    fn resolve(&mut self, how: Resolve, items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
+        let mut result = Ok(());
+        while let Some(event) = how.next(&mut self.0) {
+            if result.is_ok() {
+                result = append::<R>(out, event, items);
+            }
+        }
+        result
+    }
+}
 
 impl<R, const N: usize> Stream<R, N> {
     /// A boxed engine around `decoder`.
@@ -91,52 +186,17 @@ where
     R::Error: Serialize + Send + Sync + 'static,
 {
     fn feed(&mut self, data: &[u8], items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
-        let mut input = data;
-        let mut result = Ok(());
-        if data.len() < DETACH_FROM {
-            while let Some(event) = self.0.decode(&mut input) {
-                if result.is_ok() {
-                    result = append::<R>(out, owned_event::<R>(event), items);
-                }
-            }
-            return result;
-        }
-        // A large chunk: decode a batch of owned events without the GIL, so
-        // that other Python threads run meanwhile, then build its items with
-        // it. A batch bounds the memory held between the two.
-        let decoder = &mut self.0;
-        loop {
-            let batch = out.py().detach(|| {
-                let mut batch = Vec::with_capacity(BATCH);
-                while batch.len() < BATCH {
-                    match decoder.decode(&mut input) {
-                        Some(Err(_)) if !items.errors => {}
-                        Some(event) => batch.push(owned_event::<R>(event)),
-                        None => break,
-                    }
-                }
-                batch
-            });
-            let full = batch.len() == BATCH;
-            for event in batch {
-                if result.is_ok() {
-                    result = append::<R>(out, event, items);
-                }
-            }
-            if !full {
-                return result;
-            }
-        }
+        decode_events(out.py(), &mut self.0, data, items.errors, |event| {
+            append::<R>(out, event, items)
+        })
+    }
+
+    fn settle(&mut self, items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
+        self.resolve(Resolve::Settle, items, out)
     }
 
     fn finish(&mut self, items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
-        let mut result = Ok(());
-        while let Some(event) = self.0.finish() {
-            if result.is_ok() {
-                result = append::<R>(out, owned_event::<R>(event), items);
-            }
-        }
-        result
+        self.resolve(Resolve::Finish, items, out)
     }
 
     fn count(&mut self, data: &[u8]) -> usize {

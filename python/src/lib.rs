@@ -13,6 +13,7 @@ mod item;
 mod omnitiles;
 mod pixy2;
 mod schema;
+mod sdk;
 mod telemetrix;
 mod typed;
 mod units;
@@ -41,5 +42,6 @@ fn _robowire(m: &Bound<'_, PyModule>) -> PyResult<()> {
     add_submodule(m, &omnitiles::module(py)?)?;
     add_submodule(m, &pixy2::module(py)?)?;
     add_submodule(m, &telemetrix::module(py)?)?;
+    add_submodule(m, &sdk::module(py)?)?;
     Ok(())
 }

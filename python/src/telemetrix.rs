@@ -9,14 +9,14 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyList};
 use pythonize::Depythonizer;
-use robowire::stream::{owned_event, FrameRules, OwnedFrame};
+use robowire::stream::{FrameRules, OwnedFrame};
 use robowire::telemetrix::{
     Both, CaptureContext, Device, Dialect, Framing, Host, MessageBuf, Side, BOTH_BUFFER,
 };
 use robowire::{Stats, StreamDecoder};
 
 use crate::decoder::PyStreamDecoder;
-use crate::engine::{append, bad_choice, Engine, Items};
+use crate::engine::{append, bad_choice, decode_events, Engine, Items, Resolve};
 
 const SOURCES: &[&str] = &["pico", "host", "any"];
 
@@ -69,37 +69,52 @@ where
     }
 }
 
-impl<S> Engine for Telemetrix<S>
+impl<S> Telemetrix<S>
 where
     S: Side + Send + Sync,
-    Framing<S>: FrameRules<Owned = S::Owned, Error = robowire::telemetrix::Error> + Send + Sync,
+    Framing<S>: FrameRules<Owned = S::Owned, Error = robowire::telemetrix::Error>,
     S::Owned: Into<MessageBuf>,
 {
-    fn feed(&mut self, data: &[u8], items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
-        let mut input = data;
+    /// Append the events that `how` resolves from what is buffered.
+    fn resolve(&mut self, how: Resolve, items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
         let mut result = Ok(());
-        while let Some(event) = self.decoder.decode(&mut input) {
-            let event = owned_event::<Framing<S>>(event);
+        while let Some(event) = how.next(&mut self.decoder) {
             if result.is_ok() {
                 result = Self::put(&mut self.context, event, items, out);
-            } else if let Ok(frame) = event {
-                // Keep the context in step even after a failure.
-                let mut message: MessageBuf = frame.message.into();
-                self.context.annotate(&mut message);
             }
         }
         result
     }
+}
+
+impl<S> Engine for Telemetrix<S>
+where
+    S: Side + Send + Sync,
+    Framing<S>: FrameRules<Owned = S::Owned, Error = robowire::telemetrix::Error> + Send + Sync,
+    S::Owned: Into<MessageBuf> + Send,
+{
+    fn feed(&mut self, data: &[u8], items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
+        let context = &mut self.context;
+        let mut result = Ok(());
+        decode_events(out.py(), &mut self.decoder, data, true, |event| {
+            if result.is_ok() {
+                result = Self::put(context, event, items, out);
+            } else if let Ok(frame) = event {
+                // Keep the context in step even after a failure.
+                let mut message: MessageBuf = frame.message.into();
+                context.annotate(&mut message);
+            }
+            Ok(())
+        })?;
+        result
+    }
 
     fn finish(&mut self, items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
-        let mut result = Ok(());
-        while let Some(event) = self.decoder.finish() {
-            let event = owned_event::<Framing<S>>(event);
-            if result.is_ok() {
-                result = Self::put(&mut self.context, event, items, out);
-            }
-        }
-        result
+        self.resolve(Resolve::Finish, items, out)
+    }
+
+    fn settle(&mut self, items: Items, out: &Bound<'_, PyList>) -> PyResult<()> {
+        self.resolve(Resolve::Settle, items, out)
     }
 
     fn count(&mut self, data: &[u8]) -> usize {

@@ -11,7 +11,7 @@ from contextlib import contextmanager
 
 import pytest
 
-from robowire import omnitiles
+from robowire import omnitiles, telemetrix
 
 from conftest import DATA
 
@@ -21,6 +21,8 @@ FRAMES = len(omnitiles.Decoder(layouts="ble53").feed(LARGE[: len(LARGE) // 400])
 # What builds no items is much faster: 8 times as much, to run long enough
 # to measure.
 HUGE = LARGE * 8
+# Telemetrix reports, about as many bytes.
+REPORTS = (DATA / "telemetrix_reports.bin").read_bytes() * 5000
 
 
 @contextmanager
@@ -59,14 +61,16 @@ def spinner_rate(during: Callable[[], object] | None, seconds: float) -> float:
     return count[0] / (time.perf_counter() - start)
 
 
-@pytest.mark.parametrize("work", ["feed", "feed_array", "_count"])
+@pytest.mark.parametrize("work", ["feed", "feed_array", "_count", "telemetrix feed"])
 def test_a_second_thread_runs_during_a_large_feed(work: str) -> None:
     if work == "feed_array":
         pytest.importorskip("numpy")
 
     def run() -> None:
         decoder = omnitiles.Decoder(layouts="ble53")
-        if work == "feed":
+        if work == "telemetrix feed":
+            assert telemetrix.Decoder(source="pico").feed(REPORTS)
+        elif work == "feed":
             assert len(decoder.feed(LARGE)) == FRAMES
         elif work == "feed_array":
             assert len(decoder.feed_array(HUGE)["telemetry"]) == 8 * FRAMES

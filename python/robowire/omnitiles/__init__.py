@@ -23,7 +23,7 @@ and, where the layout carries them, ``uwb``, ``tof``, ``imu``, ``m1_adcs``,
 
 from collections.abc import Mapping as _Mapping
 
-from ._robowire import omnitiles as _native
+from .._robowire import omnitiles as _native
 
 Decoder = _native.Decoder
 DatagramDecoder = _native.DatagramDecoder

@@ -3,8 +3,8 @@
 from collections.abc import Iterable, Iterator, Mapping
 from typing import Any, ClassVar, Generic, Literal, Optional, TypedDict, TypeVar, Union, final, overload
 
-from ._robowire import Item, StreamDecoder, _Bytes, _Dict
-from ._stats import Stats
+from .._robowire import Item, StreamDecoder, _Bytes, _Dict
+from .._stats import Stats
 
 _Source = Literal["tile", "host", "any"]
 _Layouts = Union[str, Iterable[str], None]

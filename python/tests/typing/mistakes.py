@@ -5,6 +5,7 @@ must each report an error on every line marked ``# mistake`` and on no other
 from __future__ import annotations
 
 from robowire import omnitiles, telemetrix
+from robowire.omnitiles.sdk import StreamParser
 
 tile = omnitiles.Decoder(source="tile")
 for t in tile.feed(b""):
@@ -23,3 +24,5 @@ checksum = stats["checksum_errors"]  # mistake: the 0.2 name, deprecated
 omnitiles.Decoder(source="pico")  # mistake: the Pico is telemetrix's source
 telemetrix.Decoder(dialect="mirte14")  # mistake: no such dialect
 tile.feed("a5 30 c8 f8")  # mistake: text, not bytes
+for frame in StreamParser().feed(b""):
+    mm: float = frame.m1_pos_mm  # mistake: None for a 0xFFFF position, unlike the SDK

@@ -42,3 +42,14 @@ frame: bytes = omnitiles.encode({"type": "m1_extend", "speed": 200})
 info = omnitiles.field_info("telemetry", "imu.az")
 if info is not None:
     assert_type(info["unit"], Optional[str])
+
+# The SDK drop-in.
+from robowire.omnitiles.sdk import StreamParser, Telemetry as SdkTelemetry
+
+sdk_frames = StreamParser().feed(CHUNK)
+assert_type(sdk_frames, list[SdkTelemetry])
+for f in sdk_frames:
+    assert_type(f.timestamp, float)
+    assert_type(f.m1_pos_mm, Optional[float])
+    assert_type(f.m1_adcs, tuple[int, ...])
+assert_type(tile.settle(), list[omnitiles.Telemetry])
