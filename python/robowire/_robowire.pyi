@@ -66,9 +66,10 @@ class StreamDecoder(Generic[_T_co]):
         """The line went idle: a buffered frame only the next byte would decide."""
     def clear(self) -> None:
         """Forget a buffered partial frame (its bytes count as skipped)."""
-    def feed_array(self, data: _Bytes, /) -> dict[str, Any]:
+    def feed_array(self, data: _Bytes, /, masked: bool = False) -> dict[str, Any]:
         """Decode the next chunk into numpy structured arrays, one per message
-        kind (OmniTiles only; needs numpy)."""
+        kind (OmniTiles only; needs numpy); ``masked=True``: ``numpy.ma``
+        arrays with every cell without a reading masked."""
     def _count(self, data: _Bytes, /) -> int:
         """Decode as :meth:`feed` does, building no items; the frames decoded."""
     @property

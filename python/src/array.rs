@@ -126,6 +126,52 @@ pub const TELEMETRY_DTYPE: &[(&str, &str)] = &[
     ("m2_adcs_1", "<u2"),
 ];
 
+/// The lengths of the layouts that carry the IMU and the ADCs (45, 53).
+const WITH_IMU: (u8, u8) = (45, 53);
+
+/// `array` (a table of message kind `kind`) as a `numpy.ma.MaskedArray`
+/// whose mask marks every cell without a reading: an `Option` reading stored
+/// as 65535 (no reading, or its group not carried), and the IMU and ADC
+/// cells of a layout that carries none (by `len`: their values, NaN and
+/// 65535, could be real samples). Commands have no such cells.
+pub fn masked<'py>(kind: &str, array: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    let py = array.py();
+    let numpy = py.import("numpy")?;
+    let ma = py.import("numpy.ma")?;
+    if kind != "telemetry" {
+        return ma.getattr("MaskedArray")?.call1((array,));
+    }
+    let names: Vec<&str> = TELEMETRY_DTYPE.iter().map(|&(name, _)| name).collect();
+    let mask_dtype = PyList::new(py, names.iter().map(|&name| (name, "?")))?;
+    let mask = numpy.call_method1("zeros", (array.len()?, mask_dtype))?;
+    let lacks_imu = numpy
+        .call_method1("isin", (array.get_item("len")?, WITH_IMU))?
+        .call_method0("__invert__")?;
+    for &(name, _) in TELEMETRY_DTYPE {
+        let cells = if READINGS.contains(&name) {
+            array
+                .get_item(name)?
+                .call_method1("__eq__", (NO_READING,))?
+        } else if name.contains("_adcs_") || IMU.contains(&name) {
+            lacks_imu.clone()
+        } else {
+            continue;
+        };
+        mask.set_item(name, cells)?;
+    }
+    let kwargs = PyDict::new(py);
+    kwargs.set_item("mask", mask)?;
+    ma.getattr("MaskedArray")?.call((array,), Some(&kwargs))
+}
+
+/// The telemetry fields that are `Option` readings (65535: none).
+const READINGS: [&str; 7] = [
+    "m1_pos", "m2_pos", "uwb_0", "uwb_1", "uwb_2", "uwb_3", "tof",
+];
+
+/// The IMU fields of the telemetry table.
+const IMU: [&str; 6] = ["ax", "ay", "az", "gx", "gy", "gz"];
+
 /// Bytes of one telemetry record.
 const TELEMETRY_RECORD: usize = 8 + 1 + 2 * 7 + 4 * 6 + 2 * 6;
 

@@ -62,8 +62,18 @@ impl PyStreamDecoder {
     /// Rejections are only counted (:attr:`stats`). Needs numpy (``pip install
     /// robowire[numpy]``); OmniTiles only so far (``NotImplementedError``
     /// before anything is decoded otherwise).
-    #[pyo3(signature = (data, /))]
-    fn feed_array<'py>(&mut self, data: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
+    ///
+    /// ``masked=True`` returns ``numpy.ma.MaskedArray`` tables instead, each
+    /// cell masked where it holds no reading: a reading the tile sent as
+    /// 0xFFFF, and a group the frame's layout does not carry (UWB, ToF, the
+    /// IMU, the ADCs). Then ``a["uwb_3"].mean()`` averages the readings only,
+    /// and ``pandas.DataFrame(a)`` has NaN in those cells.
+    #[pyo3(signature = (data, /, masked = false))]
+    fn feed_array<'py>(
+        &mut self,
+        data: &Bound<'py, PyAny>,
+        masked: bool,
+    ) -> PyResult<Bound<'py, PyDict>> {
         let py = data.py();
         // Import numpy first (once), so that a missing numpy loses no bytes.
         static NUMPY: PyOnceLock<Py<PyModule>> = PyOnceLock::new();
@@ -79,7 +89,16 @@ impl PyStreamDecoder {
         with_bytes(data, |bytes| {
             detached_from_size(py, bytes.len(), || engine.feed_table(bytes, &mut tables))
         })??;
-        tables.into_arrays(py)
+        let arrays = tables.into_arrays(py)?;
+        if masked {
+            for (kind, array) in arrays.iter() {
+                arrays.set_item(
+                    &kind,
+                    crate::array::masked(&kind.extract::<String>()?, &array)?,
+                )?;
+            }
+        }
+        Ok(arrays)
     }
 
     /// Signal the end of the input and return the items that resolves: a

@@ -116,3 +116,51 @@ def test_feed_array_refuses_non_bytes(bad: Any) -> None:
     with pytest.raises(TypeError, match="bytes"):
         decoder.feed_array(bad)
     assert decoder.stats["bytes"] == 0
+
+
+@pytest.mark.parametrize("case", OMNI_STREAMS, ids=[c.name for c in OMNI_STREAMS])
+def test_masked_arrays_mask_exactly_the_cells_without_a_reading(case: Case) -> None:
+    """masked=True: a cell is masked exactly where the item has no value
+    (None, or a group its layout does not carry); the data is unchanged."""
+    decoder = case.decoder(errors=False, typed=False)
+    data = case.input()
+    masked = decoder.feed_array(data, masked=True)
+    plain = feed_arrays(case)
+    items = [i for i in decode_all(case, errors=False) if i["type"] == "telemetry"]
+    assert masked.keys() == plain.keys()
+    for kind, array in masked.items():
+        assert isinstance(array, np.ma.MaskedArray)
+        assert array.data.tobytes() == plain[kind].tobytes()
+    if "telemetry" not in masked:
+        return
+    table = masked["telemetry"]
+    for item, record_mask in zip(items, np.ma.getmaskarray(table)):
+        uwb = item.get("uwb") or [None] * 4
+        imu = item.get("imu")
+        expected = {
+            "m1_pos": item["m1_pos"] is None,
+            "m2_pos": item["m2_pos"] is None,
+            **{f"uwb_{i}": v is None for i, v in enumerate(uwb)},
+            "tof": item.get("tof") is None,
+            **{k: imu is None for k in ("ax", "ay", "az", "gx", "gy", "gz")},
+            **{f"m1_adcs_{i}": "m1_adcs" not in item for i in range(4)},
+            **{f"m2_adcs_{i}": "m2_adcs" not in item for i in range(2)},
+            "offset": False,
+            "len": False,
+        }
+        assert {name: bool(record_mask[name]) for name in table.dtype.names} == expected
+
+
+def test_masked_means_average_the_readings_only() -> None:
+    """The sample capture's fourth UWB range is often no reading: the
+    sentinel table's mean is 65535's, the masked one's the readings'."""
+    from conftest import DATA
+
+    data = (DATA / "ble_telemetry.bin").read_bytes()
+    sentinel = omnitiles.Decoder(source="tile").feed_array(data)["telemetry"]["uwb_3"]
+    masked = omnitiles.Decoder(source="tile").feed_array(data, masked=True)["telemetry"]["uwb_3"]
+    readings = [t.uwb[3] for t in omnitiles.Decoder(source="tile").feed(data) if t.uwb and t.uwb[3] is not None]
+    assert 0 < len(readings) < len(sentinel)
+    assert sentinel.mean() > 20_000
+    assert masked.mean() == pytest.approx(sum(readings) / len(readings))
+    assert masked.count() == len(readings)
