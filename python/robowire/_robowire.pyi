@@ -1,7 +1,7 @@
 """The compiled core of :mod:`robowire` (import from ``robowire`` instead)."""
 
 from collections.abc import Iterator, KeysView, ItemsView, Mapping, ValuesView
-from typing import Any, ClassVar, Generic, TypeVar, Union, final
+from typing import Any, ClassVar, Generic, Optional, TypeVar, Union, final
 
 from . import omnitiles as omnitiles, pixy2 as pixy2, telemetrix as telemetrix
 from ._stats import Stats
@@ -58,11 +58,12 @@ class StreamDecoder(Generic[_T_co]):
     rejections: ``offset``, then ``error`` and its keys).
     """
 
-    def feed(self, data: _Bytes, /) -> list[_T_co]:
-        """Decode the next chunk; the items it completes, in stream order."""
-    def finish(self) -> list[_T_co]:
+    def feed(self, data: _Bytes, /, t: Optional[float] = None) -> list[_T_co]:
+        """Decode the next chunk; the items it completes, in stream order, each
+        carrying the receive time ``t`` if one is given."""
+    def finish(self, t: Optional[float] = None) -> list[_T_co]:
         """End of input: the items a buffered partial frame resolves to."""
-    def settle(self) -> list[_T_co]:
+    def settle(self, t: Optional[float] = None) -> list[_T_co]:
         """The line went idle: a buffered frame only the next byte would decide."""
     def clear(self) -> None:
         """Forget a buffered partial frame (its bytes count as skipped)."""

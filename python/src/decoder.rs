@@ -47,10 +47,19 @@ impl PyStreamDecoder {
     /// Decode the next chunk of the stream (``bytes``, ``bytearray`` or
     /// ``memoryview``) and return the items completed by it, in stream order.
     /// A frame cut by the end of the chunk is kept and completed by the next.
-    #[pyo3(signature = (data, /))]
-    fn feed<'py>(&mut self, data: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyList>> {
+    /// ``t``: the time the chunk was received (``time.monotonic()``, or any
+    /// clock's seconds), which every item it returns carries as ``t`` (the
+    /// first key of its dict form, as in the tool's lines); a frame cut
+    /// across chunks has the time of the chunk that completes it.
+    #[pyo3(signature = (data, /, t = None))]
+    fn feed<'py>(
+        &mut self,
+        data: &Bound<'py, PyAny>,
+        t: Option<f64>,
+    ) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(data.py());
-        with_bytes(data, |bytes| self.engine.feed(bytes, self.items, &out))??;
+        let items = Items { t, ..self.items };
+        with_bytes(data, |bytes| self.engine.feed(bytes, items, &out))??;
         Ok(out)
     }
 
@@ -105,9 +114,10 @@ impl PyStreamDecoder {
     /// buffered frame that is complete, or (with ``errors=True``) the
     /// rejection of one cut short. The decoder is then empty and can take a new
     /// stream; offsets and counters carry on.
-    fn finish<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+    #[pyo3(signature = (t = None))]
+    fn finish<'py>(&mut self, py: Python<'py>, t: Option<f64>) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(py);
-        self.engine.finish(self.items, &out)?;
+        self.engine.finish(Items { t, ..self.items }, &out)?;
         Ok(out)
     }
 
@@ -119,9 +129,10 @@ impl PyStreamDecoder {
     /// safe to call after every read that was followed by silence. Called
     /// between two pieces of one frame, it can take a prefix that happens to
     /// pass as a shorter frame.
-    fn settle<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+    #[pyo3(signature = (t = None))]
+    fn settle<'py>(&mut self, py: Python<'py>, t: Option<f64>) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(py);
-        self.engine.settle(self.items, &out)?;
+        self.engine.settle(Items { t, ..self.items }, &out)?;
         Ok(out)
     }
 

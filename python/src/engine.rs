@@ -259,6 +259,9 @@ pub struct Items {
     pub errors: bool,
     /// What the items are.
     pub form: Form,
+    /// The receive time the items of this call carry as ``t`` (seconds, as
+    /// the caller's clock gives them), if the caller gave one.
+    pub t: Option<f64>,
 }
 
 impl Items {
@@ -292,7 +295,11 @@ impl Items {
                 ))
             }
         };
-        Ok(Self { errors, form })
+        Ok(Self {
+            errors,
+            form,
+            t: None,
+        })
     }
 
     /// The options as `repr()` shows them: `, errors=True, typed=False`.
@@ -327,16 +334,33 @@ where
     R::Error: Serialize + Send + Sync + 'static,
 {
     let py = out.py();
+    let t = items.t;
     match (event, items.form) {
         (Err(_), _) if !items.errors => Ok(()),
-        (Ok(frame), Form::Dict) => out.append(to_python(py, &frame)?),
-        (Err(rejected), Form::Dict) => out.append(to_python(py, &rejected)?),
-        (Ok(frame), Form::Typed) => out.append(R::Owned::typed(py, frame)?),
-        (Ok(frame), Form::Lazy) => out.append(untracked(py, Item::new(Box::new(frame)))?),
+        (Ok(frame), Form::Dict) => out.append(timed_dict(py, t, to_python(py, &frame)?)?),
+        (Err(rejected), Form::Dict) => out.append(timed_dict(py, t, to_python(py, &rejected)?)?),
+        (Ok(frame), Form::Typed) => out.append(R::Owned::typed(py, frame, t)?),
+        (Ok(frame), Form::Lazy) => out.append(untracked(py, Item::new(Box::new(frame), t))?),
         (Err(rejected), Form::Lazy | Form::Typed) => {
-            out.append(untracked(py, Item::new(Box::new(rejected)))?)
+            out.append(untracked(py, Item::new(Box::new(rejected), t))?)
         }
     }
+}
+
+/// `dict` (an item's dict form) with the receive time `"t"` first, as the
+/// tool's lines have it; `dict` itself without one.
+pub fn timed_dict<'py>(
+    py: Python<'py>,
+    t: Option<f64>,
+    dict: Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let Some(t) = t else {
+        return Ok(dict);
+    };
+    let timed = PyDict::new(py);
+    timed.set_item(pyo3::intern!(py, "t"), t)?;
+    timed.update(dict.cast::<PyMapping>()?)?;
+    Ok(timed.into_any())
 }
 
 /// Pythonize a serde value (dicts, lists, ints, floats, strings, None).
@@ -418,16 +442,30 @@ pub fn encode_with<'py, M: DeserializeOwned>(
 /// `message` as a mapping to read: a dict or another mapping as it is, a
 /// typed item through its `to_dict()`; a `TypeError` for anything else.
 pub fn as_message<'py>(message: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
-    if message.is_instance_of::<PyDict>() || message.cast::<PyMapping>().is_ok() {
-        return Ok(message.clone());
-    }
     if message.is_instance_of::<PyTelemetry>() {
-        return message.call_method0(pyo3::intern!(message.py(), "to_dict"));
+        let dict = message.call_method0(pyo3::intern!(message.py(), "to_dict"))?;
+        return without_time(dict);
+    }
+    if message.is_instance_of::<PyDict>() || message.cast::<PyMapping>().is_ok() {
+        return without_time(message.clone());
     }
     Err(PyTypeError::new_err(format!(
         "expected a message (a dict in the JSON-lines schema, or a decoded item), got {}",
         message.get_type().name()?
     )))
+}
+
+/// `message` without its receive time `"t"` (a decoded item's, or a tool
+/// line's), which is no part of the frame: a copy if it has one.
+fn without_time(message: Bound<'_, PyAny>) -> PyResult<Bound<'_, PyAny>> {
+    let key = pyo3::intern!(message.py(), "t");
+    if !message.contains(key)? {
+        return Ok(message);
+    }
+    let copy = PyDict::new(message.py());
+    copy.update(message.cast::<PyMapping>()?)?;
+    copy.del_item(key)?;
+    Ok(copy.into_any())
 }
 
 /// A message's frame through its [`Encode`] implementation.

@@ -11,7 +11,7 @@ use pyo3::types::{PyDict, PyIterator, PyString, PyTuple};
 use robowire::stream::{OwnedFrame, Rejected};
 use serde::Serialize;
 
-use crate::engine::to_python;
+use crate::engine::{timed_dict, to_python};
 
 /// The names of `Item`'s own attributes, which fields do not shadow.
 const METHODS: [&str; 6] = ["offset", "to_dict", "get", "keys", "values", "items"];
@@ -73,23 +73,25 @@ impl Erased for Unpickled {
 #[pyclass(module = "robowire", name = "Item", frozen, mapping)]
 pub struct Item {
     event: Box<dyn Erased>,
+    /// The receive time, the dict's `"t"` (first) when there is one.
+    t: Option<f64>,
     dict: PyOnceLock<Py<PyDict>>,
 }
 
 impl Item {
-    /// An item around `event`.
-    pub fn new(event: Box<dyn Erased>) -> Self {
+    /// An item around `event`, received at `t` if the caller gave a time.
+    pub fn new(event: Box<dyn Erased>, t: Option<f64>) -> Self {
         Self {
             event,
+            t,
             dict: PyOnceLock::new(),
         }
     }
 
     fn dict<'py>(&self, py: Python<'py>) -> PyResult<&Bound<'py, PyDict>> {
         let dict = self.dict.get_or_try_init(py, || {
-            self.event
-                .to_python(py)
-                .and_then(|d| Ok(d.cast_into::<PyDict>()?.unbind()))
+            let dict = timed_dict(py, self.t, self.event.to_python(py)?)?;
+            Ok::<_, PyErr>(dict.cast_into::<PyDict>()?.unbind())
         })?;
         Ok(dict.bind(py))
     }
@@ -238,9 +240,12 @@ impl Item {
             .get_item(pyo3::intern!(dict.py(), "offset"))?
             .ok_or_else(|| PyKeyError::new_err("offset"))?
             .extract()?;
-        Ok(Self::new(Box::new(Unpickled {
-            offset,
-            dict: dict.unbind(),
-        })))
+        Ok(Self::new(
+            Box::new(Unpickled {
+                offset,
+                dict: dict.unbind(),
+            }),
+            None,
+        ))
     }
 }

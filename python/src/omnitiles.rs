@@ -198,10 +198,15 @@ impl OmniDatagramDecoder {
 
     /// The items of one whole datagram (``bytes``, ``bytearray`` or
     /// ``memoryview``), in order.
-    #[pyo3(signature = (datagram, /))]
-    fn decode<'py>(&mut self, datagram: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyList>> {
+    /// ``t``: the datagram's receive time, which its items carry as ``t``.
+    #[pyo3(signature = (datagram, /, t = None))]
+    fn decode<'py>(
+        &mut self,
+        datagram: &Bound<'py, PyAny>,
+        t: Option<f64>,
+    ) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(datagram.py());
-        let items = self.items;
+        let items = Items { t, ..self.items };
         with_bytes(datagram, |bytes| self.inner.decode(bytes, items, &out))??;
         Ok(out)
     }

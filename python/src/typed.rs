@@ -17,7 +17,7 @@ use robowire::omnitiles::{Imu, Message, Telemetry};
 use robowire::stream::OwnedFrame;
 use serde::Serialize;
 
-use crate::engine::{encode_frame, to_python};
+use crate::engine::{encode_frame, timed_dict, to_python};
 use crate::item::Item;
 use crate::schema::exact_f64;
 
@@ -41,30 +41,46 @@ pub fn untracked<T: pyo3::PyClass + Into<PyClassInitializer<T>>>(
 
 /// How a library message becomes a typed item.
 pub trait Typed: Serialize + Send + Sync + Sized + 'static {
-    /// The typed item of `frame`: an [`Item`] unless a message has a class.
-    fn typed(py: Python<'_>, frame: OwnedFrame<Self>) -> PyResult<Bound<'_, PyAny>> {
-        untracked(py, Item::new(Box::new(frame)))
+    /// The typed item of `frame`, received at `t`: an [`Item`] unless a
+    /// message has a class.
+    fn typed(
+        py: Python<'_>,
+        frame: OwnedFrame<Self>,
+        t: Option<f64>,
+    ) -> PyResult<Bound<'_, PyAny>> {
+        untracked(py, Item::new(Box::new(frame), t))
     }
 }
 
 impl Typed for Telemetry {
-    fn typed(py: Python<'_>, frame: OwnedFrame<Self>) -> PyResult<Bound<'_, PyAny>> {
-        untracked(py, PyTelemetry::from(frame))
+    fn typed(
+        py: Python<'_>,
+        frame: OwnedFrame<Self>,
+        t: Option<f64>,
+    ) -> PyResult<Bound<'_, PyAny>> {
+        let mut item = PyTelemetry::from(frame);
+        item.t = t;
+        untracked(py, item)
     }
 }
 
 impl Typed for Message {
-    fn typed(py: Python<'_>, frame: OwnedFrame<Self>) -> PyResult<Bound<'_, PyAny>> {
+    fn typed(
+        py: Python<'_>,
+        frame: OwnedFrame<Self>,
+        t: Option<f64>,
+    ) -> PyResult<Bound<'_, PyAny>> {
         match frame.message {
-            Message::Telemetry(t) => Telemetry::typed(
+            Message::Telemetry(telemetry) => Telemetry::typed(
                 py,
                 OwnedFrame {
                     offset: frame.offset,
                     len: frame.len,
-                    message: t,
+                    message: telemetry,
                 },
+                t,
             ),
-            Message::Command(_) => untracked(py, Item::new(Box::new(frame))),
+            Message::Command(_) => untracked(py, Item::new(Box::new(frame), t)),
         }
     }
 }
@@ -94,9 +110,10 @@ fn hash_of<T: Hash>(value: &T) -> u64 {
     hasher.finish()
 }
 
-/// The keys of a telemetry item, in the dict form's order.
-const TELEMETRY_KEYS: [&str; 11] = [
-    "offset", "len", "type", "layout", "m1_pos", "m2_pos", "uwb", "tof", "imu", "m1_adcs",
+/// The keys of a telemetry item, in the dict form's order (`t` only when
+/// the item has a receive time).
+const TELEMETRY_KEYS: [&str; 12] = [
+    "t", "offset", "len", "type", "layout", "m1_pos", "m2_pos", "uwb", "tof", "imu", "m1_adcs",
     "m2_adcs",
 ];
 
@@ -122,6 +139,8 @@ pub struct PyTelemetry {
     offset: u64,
     len: usize,
     telemetry: Telemetry,
+    /// The receive time the caller gave `feed`, if any.
+    t: Option<f64>,
 }
 
 impl From<OwnedFrame<Telemetry>> for PyTelemetry {
@@ -130,6 +149,7 @@ impl From<OwnedFrame<Telemetry>> for PyTelemetry {
             offset: frame.offset,
             len: frame.len,
             telemetry: frame.message,
+            t: None,
         }
     }
 }
@@ -157,6 +177,10 @@ impl PyTelemetry {
     fn field<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
         let t = &self.telemetry;
         Ok(Some(match key {
+            "t" => match self.t {
+                Some(t) => t.into_pyobject(py)?.into_any(),
+                None => return Ok(None),
+            },
             "offset" => self.offset.into_pyobject(py)?.into_any(),
             "len" => self.len.into_pyobject(py)?.into_any(),
             "type" => pyo3::intern!(py, "telemetry").clone().into_any(),
@@ -217,6 +241,13 @@ impl PyTelemetry {
     #[getter]
     fn offset(&self) -> u64 {
         self.offset
+    }
+
+    /// The receive time given to the ``feed`` (or ``settle``, ``finish``)
+    /// call that returned the item (``t=...``), or ``None``.
+    #[getter]
+    fn t(&self) -> Option<f64> {
+        self.t
     }
 
     /// The frame's length in bytes (7, 15, 17, 45 or 53).
@@ -351,7 +382,7 @@ impl PyTelemetry {
     /// The item as the dict a ``typed=False`` decoder returns (lists, an ``imu``
     /// dict).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        to_python(py, &self.frame())
+        timed_dict(py, self.t, to_python(py, &self.frame())?)
     }
 
     fn __getitem__<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
@@ -401,8 +432,17 @@ impl PyTelemetry {
         let equal = if let Ok(other) = other.cast::<PyTelemetry>() {
             let other = other.get();
             Some(
-                (self.offset, self.len, self.telemetry)
-                    == (other.offset, other.len, other.telemetry),
+                (
+                    self.offset,
+                    self.len,
+                    self.telemetry,
+                    self.t.map(f64::to_bits),
+                ) == (
+                    other.offset,
+                    other.len,
+                    other.telemetry,
+                    other.t.map(f64::to_bits),
+                ),
             )
         } else if other.is_instance_of::<PyDict>() {
             Some(self.to_dict(py)?.eq(other)?)
@@ -415,7 +455,11 @@ impl PyTelemetry {
     /// Hashable, as an immutable value: equal items (the same offset and
     /// frame bytes) hash alike.
     fn __hash__(&self) -> PyResult<u64> {
-        Ok(hash_of(&(self.offset, self.wire()?)))
+        Ok(hash_of(&(
+            self.offset,
+            self.wire()?,
+            self.t.map(f64::to_bits),
+        )))
     }
 
     /// Pickles as its offset and frame bytes, exactly (NaN payloads too).
@@ -423,7 +467,7 @@ impl PyTelemetry {
         let py = slf.py();
         let this = slf.get();
         let rebuild = slf.get_type().getattr(pyo3::intern!(py, "_from_frame"))?;
-        let args = (this.offset, PyBytes::new(py, &this.wire()?));
+        let args = (this.offset, PyBytes::new(py, &this.wire()?), this.t);
         PyTuple::new(py, [rebuild, args.into_pyobject(py)?.into_any()])
     }
 
@@ -440,13 +484,15 @@ impl PyTelemetry {
     /// The item of one whole telemetry ``frame`` at ``offset`` (what
     /// unpickling calls); ``ValueError`` if it is no telemetry frame.
     #[staticmethod]
-    fn _from_frame(offset: u64, frame: &[u8]) -> PyResult<Self> {
+    #[pyo3(signature = (offset, frame, t = None))]
+    fn _from_frame(offset: u64, frame: &[u8], t: Option<f64>) -> PyResult<Self> {
         let telemetry =
             Telemetry::try_from(frame).map_err(|e| PyValueError::new_err(e.to_string()))?;
         Ok(Self {
             offset,
             len: frame.len(),
             telemetry,
+            t,
         })
     }
 

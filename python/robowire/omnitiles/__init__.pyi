@@ -76,6 +76,9 @@ class Telemetry(Mapping[str, Any]):
     def offset(self) -> int:
         """Offset of the frame's first byte in the stream."""
     @property
+    def t(self) -> Optional[float]:
+        """The receive time given to the call that returned the item, or ``None``."""
+    @property
     def len(self) -> int:
         """The frame's length: 7, 15, 17, 45 or 53."""
     @property
@@ -238,7 +241,7 @@ class DatagramDecoder(Generic[_T_co]):
         lazy: bool = False,
         typed: Optional[bool] = None,
     ) -> DatagramDecoder[Union[Telemetry, Item, _Dict]]: ...
-    def decode(self, datagram: _Bytes, /) -> list[_T_co]:
+    def decode(self, datagram: _Bytes, /, t: Optional[float] = None) -> list[_T_co]:
         """The items of one datagram, in order."""
     @property
     def stats(self) -> Stats: ...
