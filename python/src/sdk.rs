@@ -10,8 +10,6 @@
 //! 0xFFFF is `None` (the SDK keeps 65535 and 2400 mm), no false short frame
 //! at a chunk boundary and no stall on a stray 0xA5.
 
-use std::hash::{DefaultHasher, Hash, Hasher};
-
 use pyo3::basic::CompareOp;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -22,8 +20,8 @@ use robowire::omnitiles::{Framing, Host, Telemetry, HOST_BUFFER};
 use robowire::stream::OwnedFrame;
 use robowire::StreamDecoder;
 
-use crate::engine::{decode_events, encode_frame, stats_dict, with_bytes, Resolve};
-use crate::typed::{untracked, PyImu};
+use crate::engine::{decode_events, stats_dict, with_bytes, Resolve};
+use crate::typed::{compared, frame_bytes, hash_of, untracked, PyImu};
 
 /// How ADC counts become millimetres: ``adc / adc_max * stroke`` in
 /// Python's float arithmetic, as the SDK computes it.
@@ -74,10 +72,9 @@ impl SdkTelemetry {
         }
     }
 
-    /// The frame's bytes: every byte of each layout is a field, so encoding
-    /// the fields gives back the bytes received.
+    /// The frame's bytes, as received.
     fn wire(&self) -> PyResult<Vec<u8>> {
-        encode_frame(&self.telemetry).map_err(PyValueError::new_err)
+        frame_bytes(&self.telemetry)
     }
 
     /// Everything `==` compares, as bits.
@@ -188,23 +185,15 @@ impl SdkTelemetry {
     }
 
     fn __richcmp__(&self, other: &Bound<'_, PyAny>, op: CompareOp) -> PyResult<Py<PyAny>> {
-        let py = other.py();
-        let Ok(other) = other.cast::<SdkTelemetry>() else {
-            return Ok(py.NotImplemented());
+        let equal = match other.cast::<SdkTelemetry>() {
+            Ok(other) => Some(self.identity()? == other.get().identity()?),
+            Err(_) => None,
         };
-        let equal = self.identity()? == other.get().identity()?;
-        let answer = match op {
-            CompareOp::Eq => equal,
-            CompareOp::Ne => !equal,
-            _ => return Ok(py.NotImplemented()),
-        };
-        Ok(answer.into_pyobject(py)?.to_owned().into_any().unbind())
+        compared(other.py(), equal, op)
     }
 
     fn __hash__(&self) -> PyResult<u64> {
-        let mut hasher = DefaultHasher::new();
-        self.identity()?.hash(&mut hasher);
-        Ok(hasher.finish())
+        Ok(hash_of(&self.identity()?))
     }
 
     /// Pickles as its time, offset, frame bytes and millimetres, exactly.

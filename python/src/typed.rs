@@ -93,7 +93,7 @@ impl Typed for robowire::pixy2::Envelope<robowire::pixy2::MessageBuf> {}
 
 /// The answer of `__richcmp__` for `op` when the items are `equal` (`None`:
 /// the other object is of no type this one compares with).
-fn compared(py: Python<'_>, equal: Option<bool>, op: CompareOp) -> PyResult<Py<PyAny>> {
+pub fn compared(py: Python<'_>, equal: Option<bool>, op: CompareOp) -> PyResult<Py<PyAny>> {
     let answer = match (op, equal) {
         (CompareOp::Eq, Some(equal)) => equal,
         (CompareOp::Ne, Some(equal)) => !equal,
@@ -104,10 +104,17 @@ fn compared(py: Python<'_>, equal: Option<bool>, op: CompareOp) -> PyResult<Py<P
 
 /// A Python hash of `value` (Rust's `DefaultHasher`, which is not seeded
 /// per process: the same item hashes alike in every run, as an int does).
-fn hash_of<T: Hash>(value: &T) -> u64 {
+pub fn hash_of<T: Hash>(value: &T) -> u64 {
     let mut hasher = DefaultHasher::new();
     value.hash(&mut hasher);
     hasher.finish()
+}
+
+/// The bytes of `telemetry`'s frame. Every byte of each layout is a field
+/// (a reading can never be `Some(0xFFFF)`), so encoding the fields gives
+/// back the bytes received, checksum included.
+pub fn frame_bytes(telemetry: &Telemetry) -> PyResult<Vec<u8>> {
+    encode_frame(telemetry).map_err(PyValueError::new_err)
 }
 
 /// The keys of a telemetry item, in the dict form's order (`t` only when
@@ -218,11 +225,9 @@ impl PyTelemetry {
             .unwrap_or_else(|| py.None().into_bound(py)))
     }
 
-    /// The frame's bytes. Every byte of each layout is a field (a reading
-    /// can never be `Some(0xFFFF)`), so encoding the fields gives back the
-    /// bytes received, checksum included.
+    /// The frame's bytes, as received (see [`frame_bytes`]).
     fn wire(&self) -> PyResult<Vec<u8>> {
-        encode_frame(&self.telemetry).map_err(PyValueError::new_err)
+        frame_bytes(&self.telemetry)
     }
 
     /// The frame in the library's form, for the dict form.
