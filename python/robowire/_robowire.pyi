@@ -17,13 +17,13 @@ _Bytes = Union[bytes, bytearray, memoryview]
 
 @final
 class Item(Mapping[str, Any]):
-    """A decoded item that builds its dict only when first read: every default
-    (typed) item but OmniTiles telemetry, and every item of the deprecated
-    ``lazy=True``.
+    """A decoded item kept in Rust: every default (typed) item but OmniTiles
+    telemetry, and every item of the deprecated ``lazy=True``.
 
     A read-only mapping with exactly the keys and values of the dict a ``typed=False``
     decoder returns; equal to that dict. Fields read as attributes too
-    (``item.speed``).
+    (``item.speed``). A field read alone is made from the frame, without a
+    dict; iterating, ``len``, ``==`` and :meth:`to_dict` build the dict once.
     """
 
     @property
@@ -69,7 +69,8 @@ class StreamDecoder(Generic[_T_co]):
         """Forget a buffered partial frame (its bytes count as skipped)."""
     def feed_array(self, data: _Bytes, /, masked: bool = False) -> dict[str, Any]:
         """Decode the next chunk into numpy structured arrays, one per message
-        kind (OmniTiles only; needs numpy); ``masked=True``: ``numpy.ma``
+        kind (Pixy2: and per listed element kind, ``blocks``,
+        ``features_vectors``, ...; needs numpy); ``masked=True``: ``numpy.ma``
         arrays with every cell without a reading masked."""
     def _count(self, data: _Bytes, /) -> int:
         """Decode as :meth:`feed` does, building no items; the frames decoded."""

@@ -2,9 +2,9 @@
 //! message kind, built in Rust (records packed into one buffer that numpy
 //! then owns and views with the kind's dtype, through the `numpy` crate).
 //!
-//! Tables exist for OmniTiles (telemetry and every command kind); a
-//! protocol without them raises `NotImplementedError` before decoding
-//! anything, so no byte is lost.
+//! OmniTiles has a record per message kind written here (telemetry and
+//! every command); Telemetrix and Pixy2 tables are read from the messages'
+//! serde form ([`crate::columns`]).
 
 use std::collections::BTreeMap;
 
@@ -14,6 +14,9 @@ use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList};
 use robowire::omnitiles::{Command, Message, Telemetry, NO_READING};
 use robowire::stream::OwnedFrame;
+use robowire::units::FieldTable;
+
+use crate::columns::Flat;
 
 /// The packed records of one message kind, and its numpy dtype.
 struct Table {
@@ -26,6 +29,10 @@ struct Table {
 #[derive(Default)]
 pub struct Tables {
     tables: BTreeMap<&'static str, Table>,
+    /// The tables read from the serde form, for protocols without records.
+    flat: Option<Flat>,
+    /// The index of the frame being recorded among the decoder's frames.
+    pub frame: u64,
 }
 
 impl Tables {
@@ -45,29 +52,51 @@ impl Tables {
             .records
     }
 
-    /// The tables as a dict of numpy structured arrays, by kind.
-    pub fn into_arrays(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    /// The serde-form tables, for a protocol whose field table is `fields`.
+    pub fn flat(&mut self, fields: &'static FieldTable) -> &mut Flat {
+        self.flat.get_or_insert_with(|| Flat::new(fields))
+    }
+
+    /// The tables as a dict of numpy structured arrays, by kind (with
+    /// `masked`, masked arrays: see [`masked`]).
+    pub fn into_arrays(self, py: Python<'_>, masked: bool) -> PyResult<Bound<'_, PyDict>> {
         let arrays = PyDict::new(py);
+        if let Some(flat) = self.flat {
+            flat.into_arrays(&arrays, masked)?;
+        }
         for (kind, table) in self.tables {
             let dtype = dtype_of(py, kind, table.dtype)?;
-            let bytes = PyArray1::<u8>::from_vec(py, table.records);
-            // SAFETY: `bytes` is a contiguous 1-D u8 array whose length is a
-            // whole number of records of `dtype`, so the view is valid;
-            // PyArray_View steals the reference to the descriptor it is given
-            // (a new one here) and returns a new reference or NULL.
-            let array = unsafe {
-                let descr = dtype.into_ptr().cast::<npyffi::PyArray_Descr>();
-                let view = npyffi::PY_ARRAY_API.PyArray_View(
-                    py,
-                    bytes.as_array_ptr(),
-                    descr,
-                    std::ptr::null_mut(),
-                );
-                Bound::from_owned_ptr_or_err(py, view)?
-            };
-            arrays.set_item(kind, array)?;
+            let array = records_as(py, table.records, dtype)?;
+            match masked {
+                true => arrays.set_item(kind, self::masked(kind, &array)?)?,
+                false => arrays.set_item(kind, array)?,
+            }
         }
         Ok(arrays)
+    }
+}
+
+/// `records` (whole records of `dtype`) as a numpy structured array that
+/// owns them.
+pub fn records_as<'py>(
+    py: Python<'py>,
+    records: Vec<u8>,
+    dtype: Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let bytes = PyArray1::<u8>::from_vec(py, records);
+    // SAFETY: `bytes` is a contiguous 1-D u8 array whose length is a whole
+    // number of records of `dtype`, so the view is valid; PyArray_View
+    // steals the reference to the descriptor it is given (a new one here)
+    // and returns a new reference or NULL.
+    unsafe {
+        let descr = dtype.into_ptr().cast::<npyffi::PyArray_Descr>();
+        let view = npyffi::PY_ARRAY_API.PyArray_View(
+            py,
+            bytes.as_array_ptr(),
+            descr,
+            std::ptr::null_mut(),
+        );
+        Bound::from_owned_ptr_or_err(py, view)
     }
 }
 
@@ -92,11 +121,8 @@ fn dtype_of<'py>(
 
 /// A message that has tables.
 pub trait Tabular: Sized {
-    /// Whether this message type has tables (checked before decoding).
-    const TABULAR: bool = false;
-
     /// Append `frame`'s record to its kind's table.
-    fn record(_frame: &OwnedFrame<Self>, _tables: &mut Tables) {}
+    fn record(frame: &OwnedFrame<Self>, tables: &mut Tables) -> PyResult<()>;
 }
 
 /// The dtype of the `telemetry` table. `len` tells the layout (7, 15, 17, 45
@@ -187,9 +213,7 @@ const VELOCITY: &[(&str, &str)] = &[
 ];
 
 impl Tabular for Telemetry {
-    const TABULAR: bool = true;
-
-    fn record(frame: &OwnedFrame<Self>, tables: &mut Tables) {
+    fn record(frame: &OwnedFrame<Self>, tables: &mut Tables) -> PyResult<()> {
         let t = &frame.message;
         let out = tables.table("telemetry", TELEMETRY_DTYPE);
         out.reserve(TELEMETRY_RECORD);
@@ -213,13 +237,12 @@ impl Tabular for Telemetry {
         for v in m1.iter().chain(&m2) {
             out.extend_from_slice(&v.to_le_bytes());
         }
+        Ok(())
     }
 }
 
 impl Tabular for Command {
-    const TABULAR: bool = true;
-
-    fn record(frame: &OwnedFrame<Self>, tables: &mut Tables) {
+    fn record(frame: &OwnedFrame<Self>, tables: &mut Tables) -> PyResult<()> {
         let c = &frame.message;
         let (dtype, fields): (_, &[u8]) = match *c {
             Command::Extend { speed, .. } | Command::Retract { speed, .. } => (SPEED, &[speed]),
@@ -233,13 +256,12 @@ impl Tabular for Command {
         out.extend_from_slice(&frame.offset.to_le_bytes());
         out.push(frame.len as u8);
         out.extend_from_slice(fields);
+        Ok(())
     }
 }
 
 impl Tabular for Message {
-    const TABULAR: bool = true;
-
-    fn record(frame: &OwnedFrame<Self>, tables: &mut Tables) {
+    fn record(frame: &OwnedFrame<Self>, tables: &mut Tables) -> PyResult<()> {
         let (offset, len) = (frame.offset, frame.len);
         match frame.message {
             Message::Telemetry(message) => Telemetry::record(
@@ -262,6 +284,20 @@ impl Tabular for Message {
     }
 }
 
-impl Tabular for robowire::pixy2::Envelope<robowire::pixy2::ResponseBuf> {}
-impl Tabular for robowire::pixy2::Envelope<robowire::pixy2::Request> {}
-impl Tabular for robowire::pixy2::Envelope<robowire::pixy2::MessageBuf> {}
+/// Pixy2 tables come from the serde form, with a table per row list.
+macro_rules! pixy2_tables {
+    ($($message:ty),*) => {$(
+        impl Tabular for robowire::pixy2::Envelope<$message> {
+                    fn record(frame: &OwnedFrame<Self>, tables: &mut Tables) -> PyResult<()> {
+                let index = tables.frame;
+                tables.flat(&robowire::pixy2::FIELD_INFO).push(frame, index)
+            }
+        }
+    )*};
+}
+
+pixy2_tables!(
+    robowire::pixy2::ResponseBuf,
+    robowire::pixy2::Request,
+    robowire::pixy2::MessageBuf
+);

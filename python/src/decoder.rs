@@ -65,18 +65,20 @@ impl PyStreamDecoder {
 
     /// Decode the next chunk as :meth:`feed` does, into numpy structured
     /// arrays instead of items: a dict from message kind (``"telemetry"``,
-    /// ``"m1_extend"``, ...) to a 1-D array with one record per frame of that
-    /// kind completed by this chunk, fields ``offset``, ``len`` and the
-    /// message's own (flattened, so ``pandas.DataFrame(array)`` works).
-    /// Rejections are only counted (:attr:`stats`). Needs numpy (``pip install
-    /// robowire[numpy]``); OmniTiles only so far (``NotImplementedError``
-    /// before anything is decoded otherwise).
+    /// ``"m1_extend"``, ``"analog_report"``, ...) to a 1-D array with one
+    /// record per frame of that kind completed by this chunk, fields
+    /// ``offset``, ``len`` and the message's own (flattened, so
+    /// ``pandas.DataFrame(array)`` works). Pixy2's blocks and features are a
+    /// row each in ``blocks``, ``features_vectors``, ... with the frame's
+    /// index (``frame``). Rejections are only counted (:attr:`stats`). Needs
+    /// numpy (``pip install robowire[numpy]``).
     ///
     /// ``masked=True`` returns ``numpy.ma.MaskedArray`` tables instead, each
     /// cell masked where it holds no reading: a reading the tile sent as
-    /// 0xFFFF, and a group the frame's layout does not carry (UWB, ToF, the
-    /// IMU, the ADCs). Then ``a["uwb_3"].mean()`` averages the readings only,
-    /// and ``pandas.DataFrame(a)`` has NaN in those cells.
+    /// 0xFFFF, a group the frame's layout does not carry (UWB, ToF, the
+    /// IMU, the ADCs), a field the frame does not have. Then
+    /// ``a["uwb_3"].mean()`` averages the readings only, and
+    /// ``pandas.DataFrame(a)`` has NaN in those cells.
     #[pyo3(signature = (data, /, masked = false))]
     fn feed_array<'py>(
         &mut self,
@@ -98,16 +100,7 @@ impl PyStreamDecoder {
         with_bytes(data, |bytes| {
             detached_from_size(py, bytes.len(), || engine.feed_table(bytes, &mut tables))
         })??;
-        let arrays = tables.into_arrays(py)?;
-        if masked {
-            for (kind, array) in arrays.iter() {
-                arrays.set_item(
-                    &kind,
-                    crate::array::masked(&kind.extract::<String>()?, &array)?,
-                )?;
-            }
-        }
-        Ok(arrays)
+        tables.into_arrays(py, masked)
     }
 
     /// Signal the end of the input and return the items that resolves: a

@@ -6,7 +6,7 @@
 //! Each event becomes a Python dict by pythonizing the library's own
 //! [`OwnedFrame`] or [`Rejected`]; nothing here knows any message.
 
-use pyo3::exceptions::{PyDeprecationWarning, PyNotImplementedError, PyTypeError, PyValueError};
+use pyo3::exceptions::{PyDeprecationWarning, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyByteArray, PyBytes, PyDict, PyList, PyMapping, PyString, PyType};
@@ -35,12 +35,8 @@ pub trait Engine: Send + Sync {
     /// frames parsed (what a benchmark compares the full path with).
     fn count(&mut self, data: &[u8]) -> usize;
     /// Decode `data` into `tables` (see [`crate::array`]); rejections are
-    /// only counted. `NotImplementedError`, before decoding anything, for a
-    /// protocol without tables.
-    fn feed_table(&mut self, data: &[u8], tables: &mut Tables) -> PyResult<()> {
-        let _ = (data, tables);
-        Err(no_tables())
-    }
+    /// only counted. All of `data` is taken even if a table fails.
+    fn feed_table(&mut self, data: &[u8], tables: &mut Tables) -> PyResult<()>;
     /// The counters so far.
     fn stats(&self) -> Stats;
     /// Bytes held as the start of an unfinished candidate.
@@ -209,16 +205,18 @@ where
     }
 
     fn feed_table(&mut self, data: &[u8], tables: &mut Tables) -> PyResult<()> {
-        if !R::Owned::TABULAR {
-            return Err(no_tables());
-        }
         let mut input = data;
+        let mut result = Ok(());
+        tables.frame = frames_decoded(&self.0.stats());
         while let Some(event) = self.0.decode(&mut input) {
             if let Ok(frame) = owned_event::<R>(event) {
-                R::Owned::record(&frame, tables);
+                if result.is_ok() {
+                    result = R::Owned::record(&frame, tables);
+                }
+                tables.frame += 1;
             }
         }
-        Ok(())
+        result
     }
 
     fn stats(&self) -> Stats {
@@ -245,11 +243,10 @@ pub enum Form {
     Typed,
 }
 
-/// The error of `feed_array` on a protocol without tables.
-fn no_tables() -> PyErr {
-    PyNotImplementedError::new_err(
-        "feed_array has tables for OmniTiles only so far; use feed(...), whose typed items read only the fields asked for",
-    )
+/// How many frames a decoder has decoded (those that parsed), from its
+/// counters: the index of the next one.
+pub fn frames_decoded(stats: &Stats) -> u64 {
+    stats.frames.saturating_sub(stats.malformed)
 }
 
 /// How a decoder hands out its events.

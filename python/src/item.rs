@@ -12,6 +12,7 @@ use robowire::stream::{OwnedFrame, Rejected};
 use serde::Serialize;
 
 use crate::engine::{timed_dict, to_python};
+use crate::pick::field;
 
 /// The names of `Item`'s own attributes, which fields do not shadow.
 const METHODS: [&str; 6] = ["offset", "to_dict", "get", "keys", "values", "items"];
@@ -22,6 +23,9 @@ pub trait Erased: Send + Sync {
     fn offset(&self) -> u64;
     /// The item as a dict in the JSON-lines schema.
     fn to_python<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>>;
+    /// The value of that dict's `key`, made without the dict (`None`: no
+    /// such key).
+    fn field<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Option<Bound<'py, PyAny>>>;
 }
 
 impl<M: Serialize + Send + Sync> Erased for OwnedFrame<M> {
@@ -32,6 +36,10 @@ impl<M: Serialize + Send + Sync> Erased for OwnedFrame<M> {
     fn to_python<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, self)
     }
+
+    fn field<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        field(py, self, key)
+    }
 }
 
 impl<E: Serialize + Send + Sync> Erased for Rejected<E> {
@@ -41,6 +49,10 @@ impl<E: Serialize + Send + Sync> Erased for Rejected<E> {
 
     fn to_python<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, self)
+    }
+
+    fn field<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        field(py, self, key)
     }
 }
 
@@ -58,9 +70,14 @@ impl Erased for Unpickled {
     fn to_python<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         Ok(self.dict.bind(py).clone().into_any())
     }
+
+    fn field<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.dict.bind(py).get_item(key)
+    }
 }
 
-/// A decoded item that builds its dict only when it is first read: what a
+/// A decoded item that builds its dict only when it is first iterated or
+/// compared (a field read alone is made from the frame in Rust): what a
 /// decoder returns by default for every message without a class
 /// of its own (all but OmniTiles telemetry) and for rejections, and what the
 /// deprecated ``lazy=True`` returns for everything. Fields read as attributes
@@ -95,6 +112,30 @@ impl Item {
         })?;
         Ok(dict.bind(py))
     }
+
+    /// The value under `key`: from the dict once it is built, else read
+    /// from the event alone (one field made, no dict).
+    fn lookup<'py>(
+        &self,
+        py: Python<'py>,
+        key: &Bound<'py, PyAny>,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        if let Some(dict) = self.dict.get(py) {
+            return dict.bind(py).get_item(key);
+        }
+        let Ok(name) = key.cast::<PyString>() else {
+            return self.dict(py)?.get_item(key);
+        };
+        self.field(py, &name.to_cow()?)
+    }
+
+    /// The value under the string key `name`, from the event alone.
+    fn field<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        match (name, self.t) {
+            ("t", Some(t)) => Ok(Some(t.into_pyobject(py)?.into_any())),
+            _ => self.event.field(py, name),
+        }
+    }
 }
 
 #[pymethods]
@@ -118,7 +159,7 @@ impl Item {
         key: &Bound<'py, PyAny>,
         default: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        Ok(match self.dict(py)?.get_item(key)? {
+        Ok(match self.lookup(py, key)? {
             Some(value) => value,
             None => default.unwrap_or_else(|| py.None().into_bound(py)),
         })
@@ -151,7 +192,11 @@ impl Item {
         let text = name.to_cow()?;
         let own = text.starts_with("__") || METHODS.contains(&&*text);
         if !own {
-            if let Some(value) = item.dict(py)?.get_item(name)? {
+            let value = match item.dict.get(py) {
+                Some(dict) => dict.bind(py).get_item(name)?,
+                None => item.field(py, &text)?,
+            };
+            if let Some(value) = value {
                 return Ok(value);
             }
         }
@@ -185,13 +230,12 @@ impl Item {
         py: Python<'py>,
         key: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.dict(py)?
-            .get_item(key)?
+        self.lookup(py, key)?
             .ok_or_else(|| PyKeyError::new_err(key.clone().unbind()))
     }
 
     fn __contains__(&self, py: Python<'_>, key: &Bound<'_, PyAny>) -> PyResult<bool> {
-        self.dict(py)?.contains(key)
+        Ok(self.lookup(py, key)?.is_some())
     }
 
     fn __len__(&self, py: Python<'_>) -> PyResult<usize> {

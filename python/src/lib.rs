@@ -7,16 +7,19 @@
 //! ([`typed`]).
 
 mod array;
+mod columns;
 mod decoder;
 mod engine;
 mod item;
 mod omnitiles;
+mod pick;
 mod pixy2;
 mod schema;
 mod sdk;
 mod telemetrix;
 mod typed;
 mod units;
+mod walk;
 
 use pyo3::prelude::*;
 

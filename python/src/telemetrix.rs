@@ -9,14 +9,15 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyList};
 use pythonize::Depythonizer;
-use robowire::stream::{FrameRules, OwnedFrame};
+use robowire::stream::{owned_event, FrameRules, OwnedFrame};
 use robowire::telemetrix::{
     Both, CaptureContext, Device, Dialect, Framing, Host, MessageBuf, Side, BOTH_BUFFER,
 };
 use robowire::{Stats, StreamDecoder};
 
+use crate::array::Tables;
 use crate::decoder::PyStreamDecoder;
-use crate::engine::{append, bad_choice, decode_events, Engine, Items, Resolve};
+use crate::engine::{append, bad_choice, decode_events, frames_decoded, Engine, Items, Resolve};
 
 const SOURCES: &[&str] = &["pico", "host", "any"];
 
@@ -56,16 +57,23 @@ where
         items: Items,
         out: &Bound<'_, PyList>,
     ) -> PyResult<()> {
-        let event = event.map(|frame| {
-            let mut message: MessageBuf = frame.message.into();
-            context.annotate(&mut message);
-            OwnedFrame {
-                offset: frame.offset,
-                len: frame.len,
-                message,
-            }
-        });
+        let event = event.map(|frame| Self::annotated(context, frame));
         append::<Framing<Both>>(out, event, items)
+    }
+
+    /// `frame` as a message of either side, with what the capture so far
+    /// tells about it (the tool's line for it).
+    fn annotated(
+        context: &mut CaptureContext,
+        frame: OwnedFrame<S::Owned>,
+    ) -> OwnedFrame<MessageBuf> {
+        let mut message: MessageBuf = frame.message.into();
+        context.annotate(&mut message);
+        OwnedFrame {
+            offset: frame.offset,
+            len: frame.len,
+            message,
+        }
     }
 }
 
@@ -124,6 +132,23 @@ where
             frames += usize::from(event.is_ok());
         }
         frames
+    }
+
+    fn feed_table(&mut self, data: &[u8], tables: &mut Tables) -> PyResult<()> {
+        let mut input = data;
+        let mut result = Ok(());
+        let mut index = frames_decoded(&self.decoder.stats());
+        while let Some(event) = self.decoder.decode(&mut input) {
+            if let Ok(frame) = owned_event::<Framing<S>>(event) {
+                let frame = Self::annotated(&mut self.context, frame);
+                if result.is_ok() {
+                    let flat = tables.flat(&robowire::telemetrix::FIELD_INFO);
+                    result = flat.push(&frame, index);
+                }
+                index += 1;
+            }
+        }
+        result
     }
 
     fn stats(&self) -> Stats {

@@ -103,11 +103,152 @@ def test_rejections_are_counted_and_frames_kept() -> None:
     assert decoder.feed_array(b"") == {}
 
 
-@pytest.mark.parametrize("decoder", [pixy2.Decoder(), telemetrix.Decoder()], ids=["pixy2", "telemetrix"])
-def test_protocols_without_tables_refuse_before_decoding(decoder: Any) -> None:
-    with pytest.raises(NotImplementedError, match="OmniTiles"):
-        decoder.feed_array(b"\x03\x02\x0a\x01")
-    assert decoder.stats["bytes"] == 0
+OTHER_STREAMS = [c for c in CASES if c.make is not omnitiles.Decoder and not c.datagrams]
+# The lists whose elements are rows of their own table (the tool's CSV
+# tables, FieldInfo::rows): by message type, the list's path and its table.
+ROW_LISTS = {
+    "blocks": [("blocks", "blocks")],
+    "features": [
+        ("sections.*.vectors", "features_vectors"),
+        ("sections.*.intersections", "features_intersections"),
+        ("sections.*.barcodes", "features_barcodes"),
+    ],
+}
+
+
+def leaves(value: Any, path: str = "") -> list[tuple[str, Any]]:
+    """A dict-form value's leaves by path (`reading.volts`, `data.3`)."""
+    if isinstance(value, dict):
+        return [leaf for k, v in value.items() for leaf in leaves(v, f"{path}.{k}" if path else k)]
+    if isinstance(value, list):
+        return [leaf for i, v in enumerate(value) for leaf in leaves(v, f"{path}.{i}")]
+    return [(path, value)]
+
+
+def expected_rows(items: list[dict[str, Any]]) -> dict[str, list[dict[str, Any]]]:
+    """The rows each table should hold for `items` (dict form), by table."""
+    tables: dict[str, list[dict[str, Any]]] = {}
+    for index, item in enumerate(items):
+        # The type names the table: it is no column.
+        cells = [(p, v) for p, v in leaves(item) if p != "type"]
+        lists = ROW_LISTS.get(item["type"])
+        if lists is None:
+            tables.setdefault(item["type"], []).append(dict(cells))
+            continue
+        shared = {"frame": index, **{p: v for p, v in cells if not p.startswith(("blocks.", "sections."))}}
+        for pattern, table in lists:
+            head, _, tail = pattern.partition("*")
+            elements: dict[str, dict[str, Any]] = {}
+            for p, v in cells:
+                # p: sections.<s>.vectors.<i>.<field> or blocks.<i>.<field>
+                parts = p.split(".")
+                want = pattern.split(".")
+                if len(parts) <= len(want) + 1:
+                    continue
+                if all(w == h or (w == "*" and h.isdigit()) for w, h in zip(want, parts)):
+                    element = ".".join(parts[: len(want) + 1])
+                    elements.setdefault(element, {})[".".join(parts[len(want) + 1 :])] = v
+            rows = tables.setdefault(table, [])
+            for position, fields in enumerate(elements.values()):
+                rows.append({**shared, "element": position, **fields})
+            if not elements:
+                rows.append({**shared, "element": None})
+    return tables
+
+
+def cell_of(record: Any, mask: Any, names: tuple[str, ...], path: str, value: Any) -> tuple[Any, bool]:
+    """The value and mask of `path` in a masked record for an expected `value`
+    (a name of a number-or-name field is in the `.name` column)."""
+    column = f"{path}.name" if isinstance(value, str) and f"{path}.name" in names else path
+    return record[column], bool(mask[column])
+
+
+@pytest.mark.parametrize("case", OTHER_STREAMS, ids=[c.name for c in OTHER_STREAMS])
+def test_telemetrix_and_pixy2_arrays_hold_the_items_values(case: Case) -> None:
+    # feed_array has no finish: the items of the same feed are the truth.
+    items = case.decoder(errors=False).feed(case.input())
+    arrays = case.decoder(errors=False).feed_array(case.input(), masked=True)
+    expected = expected_rows(items)
+    assert set(arrays) == set(expected)
+    for table, rows in expected.items():
+        array = arrays[table]
+        names = array.dtype.names
+        assert len(array) == len(rows), table
+        for k, row in enumerate(rows):
+            record, mask = array.data[k], array.mask[k]
+            for path, value in row.items():
+                got, masked = cell_of(record, mask, names, path, value)
+                if value is None:
+                    assert masked, (table, k, path)
+                    continue
+                assert not masked, (table, k, path)
+                if isinstance(got, str) and not isinstance(value, str):
+                    assert got == str(value), (table, k, path)  # a type byte's number
+                elif isinstance(value, float):
+                    assert got == value or (math.isnan(got) and math.isnan(value)), (table, k, path)
+                else:
+                    assert got == value, (table, k, path, got, value)
+            # Every other cell is one this frame does not have: masked.
+            given = {f"{p}.name" if isinstance(v, str) and f"{p}.name" in names else p for p, v in row.items()}
+            assert all(mask[n] for n in names if n not in given), (table, k)
+
+
+def present_cells(array: Any) -> list[dict[str, Any]]:
+    """Each row of a masked table as {column: value} of its unmasked cells
+    (NaN as a string, to compare equal)."""
+    names = array.dtype.names
+    rows = []
+    for record, mask in zip(array.data.tolist(), array.mask.tolist()):
+        rows.append({n: ("nan" if v != v else v) for n, v, m in zip(names, record, mask) if not m})
+    return rows
+
+
+@pytest.mark.parametrize("case", OTHER_STREAMS, ids=[c.name for c in OTHER_STREAMS])
+@pytest.mark.parametrize("chunk", [1, 7, 4096])
+def test_telemetrix_and_pixy2_arrays_do_not_depend_on_chunking(case: Case, chunk: int) -> None:
+    whole = case.decoder(errors=False).feed_array(case.input(), masked=True)
+    decoder = case.decoder(errors=False)
+    data = case.input()
+    parts: dict[str, list[dict[str, Any]]] = {}
+    for start in range(0, len(data), chunk):
+        for kind, array in decoder.feed_array(data[start : start + chunk], masked=True).items():
+            parts.setdefault(kind, []).extend(present_cells(array))
+    assert {kind: present_cells(array) for kind, array in whole.items()} == parts
+
+
+def test_number_or_name_fields_stay_numeric() -> None:
+    # A sonar's cm is a number or a name ("out_of_range"): a u1 column with
+    # the names beside it, so mean() is over the distances.
+    frames = bytes.fromhex("05 0b 09 0a 00 77") + bytes.fromhex("05 0b 09 0a ff fd")
+    items = telemetrix.Decoder(source="pico", typed=False).feed(frames)
+    sonar = telemetrix.Decoder(source="pico").feed_array(frames, masked=True)["sonar_distance"]
+    assert [i["cm"] for i in items] == [119, sonar["cm.name"][1]]
+    assert sonar["cm"].dtype.kind in "ui" and sonar["cm"].mean() == 119
+    assert sonar["cm.name"].mask.tolist() == [True, False]
+    raw = telemetrix.Decoder(source="pico").feed_array(frames)["sonar_distance"]
+    assert raw["cm"].tolist() == [119, np.iinfo(raw["cm"].dtype).max]
+
+
+def test_type_bytes_are_text_in_every_call() -> None:
+    # A sensor type is a name, or its number where it names none: a text
+    # column, whichever the call holds.
+    known, unknown = bytes.fromhex("04 15 00 00 00"), bytes.fromhex("04 15 00 63 01")
+    decoder = telemetrix.Decoder(source="pico")
+    for frame, text in ((known, "gps"), (unknown, "99"), (known + unknown, "gps")):
+        column = decoder.feed_array(frame)["sensor_main_report"]["sensor_type"]
+        assert column.dtype.kind == "U" and column[0] == text
+
+
+def test_pixy2_blocks_are_rows_with_their_frame() -> None:
+    capture = next(c for c in CASES if c.name == "pixy2_any").input()
+    items = [i for i in pixy2.Decoder(typed=False).feed(capture)]
+    blocks = pixy2.Decoder().feed_array(capture)["blocks"]
+    frames = [k for k, item in enumerate(items) if item["type"] == "blocks"]
+    assert sorted(set(blocks["frame"].tolist())) == frames
+    first = items[frames[0]]
+    rows = blocks[blocks["frame"] == frames[0]]
+    assert rows["x"].tolist()[: len(first["blocks"])] == [b["x"] for b in first["blocks"]]
+    assert (rows["offset"] == first["offset"]).all()
 
 
 @pytest.mark.parametrize("bad", ["a5 50 50", 3, None])

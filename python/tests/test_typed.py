@@ -8,6 +8,7 @@ import gc
 import math
 import struct
 import warnings
+from pathlib import Path
 from collections.abc import Mapping
 from typing import Any
 
@@ -39,6 +40,55 @@ def test_typed_items_equal_the_dicts(case: Case) -> None:
             assert item[key] == attribute_form(value) or item[key] == value, key
             assert getattr(item, key) == item[key], key
             assert key in item
+
+
+def test_fields_read_before_any_dict_is_built(case: Case) -> None:
+    # A field read alone is made from the frame in Rust (no dict): each
+    # must be the dict's value, read on items nothing else has touched.
+    dicts = decode_all(case)
+    for key_of in (lambda d: list(d), lambda d: list(d)[::-1]):
+        fresh = decode_all(case, typed=True)
+        for item, d in zip(fresh, dicts):
+            if isinstance(item, omnitiles.Telemetry):
+                continue
+            for key in key_of(d):
+                assert item.get(key) == d[key], key
+                assert key in item
+                assert item[key] == d[key]
+                if key not in ("offset", "items", "keys", "values", "get"):
+                    assert getattr(item, key) == d[key], key
+            assert item.get("no such field") is None and "no such field" not in item
+            with pytest.raises(KeyError):
+                item["no such field"]
+        assert fresh == dicts
+
+
+def test_a_field_read_builds_no_dict() -> None:
+    # Reading one field keeps no dict alive: the items held take no more
+    # memory after the read than before (a dict each took ~600 B).
+    import tracemalloc
+
+    capture = (Path(__file__).parents[2] / "tests" / "data" / "telemetrix_reports.bin").read_bytes()
+    items = telemetrix.Decoder(source="pico").feed(capture * 20)
+    assert len(items) > 1000
+    tracemalloc.start()
+    try:
+        before = tracemalloc.get_traced_memory()[0]
+        kinds = {item.type for item in items} | {item.get("pin") for item in items}
+        grown = tracemalloc.get_traced_memory()[0] - before
+    finally:
+        tracemalloc.stop()
+    assert "digital_report" in kinds
+    assert grown / len(items) < 50, f"{grown / len(items):.0f} B per item"
+
+
+def test_receive_time_read_before_any_dict_is_built() -> None:
+    frame = bytes.fromhex("05 0b 09 0a 00 77")
+    (timed,) = telemetrix.Decoder(source="pico").feed(frame, t=12.5)
+    assert (timed.t, timed["t"], "t" in timed) == (12.5, 12.5, True)
+    assert list(timed)[0] == "t"
+    (untimed,) = telemetrix.Decoder(source="pico").feed(frame)
+    assert "t" not in untimed and untimed.get("t") is None
 
 
 @pytest.mark.parametrize("chunk", [1, 5, 53, 4096])
