@@ -118,6 +118,7 @@ extern crate alloc;
 extern crate std;
 
 pub mod encode;
+pub mod idle;
 pub mod io;
 pub mod omnitiles;
 pub mod pixy2;
@@ -129,6 +130,7 @@ pub mod telemetrix;
 pub mod units;
 
 pub use encode::{Encode, EncodeError, FrameBuf};
+pub use idle::Idle;
 pub use stream::{
     Check, Counter, Event, Feed, Flush, Frame, FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats,
     StreamDecoder,

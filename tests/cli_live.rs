@@ -548,3 +548,123 @@ fn encode_and_decode_share_one_port() {
     assert!(stdout.contains("\"type\":\"resolution\""), "{stdout}");
     drop(slave);
 }
+
+/// Start `decode omnitiles` on a pty with `extra` options; each stdout line
+/// comes out of the channel with the time it was read.
+fn spawn_lines(
+    device: &str,
+    extra: &[&str],
+) -> (
+    std::process::Child,
+    std::sync::mpsc::Receiver<(Instant, String)>,
+) {
+    use std::io::BufRead;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_robowire"))
+        .args(["decode", "omnitiles", "--from", "tile", "--port", device])
+        .args(extra)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let stdout = child.stdout.take().unwrap();
+    let (send, lines) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        for line in std::io::BufReader::new(stdout).lines() {
+            let Ok(line) = line else { break };
+            if send.send((Instant::now(), line)).is_err() {
+                break;
+            }
+        }
+    });
+    let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut first = String::new();
+    stderr.read_line(&mut first).unwrap();
+    assert!(first.starts_with("robowire: reading "), "{first}");
+    (child, lines)
+}
+
+/// A 7-byte OmniTiles frame with the default layouts may begin a longer
+/// one: on a live port the silence after it ends it, within the idle gap
+/// (5 ms and 3.5 byte-times by default) plus the time to read and write
+/// it, instead of when the next frame arrives. `--idle 0` keeps it until
+/// then. Prints the latencies it measured (bytes written → line read).
+#[test]
+fn a_short_frame_leaves_when_the_line_goes_idle() {
+    let _one = serial();
+    let pos7 = [0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x22];
+    let (mut master, slave) = pty_pair();
+    let device = slave.name().unwrap();
+    // The first 256 bytes are held until they show the input is no SPI
+    // buffers: whole 53-byte frames first.
+    let prime = |master: &mut serialport::TTYPort, lines: &std::sync::mpsc::Receiver<_>| {
+        let capture = tile_capture();
+        master.write_all(&capture[..53 * 6]).unwrap();
+        master.flush().unwrap();
+        for _ in 0..6 {
+            lines.recv_timeout(Duration::from_secs(5)).unwrap();
+        }
+    };
+    let (mut child, lines) = spawn_lines(&device, &[]);
+    prime(&mut master, &lines);
+    let mut latencies = Vec::new();
+    for _ in 0..20 {
+        let sent = Instant::now();
+        master.write_all(&pos7).unwrap();
+        master.flush().unwrap();
+        let (at, line) = lines
+            .recv_timeout(Duration::from_secs(5))
+            .expect("the frame came out while the line was silent");
+        let line: Value = serde_json::from_str(&line).unwrap();
+        assert_eq!(line["layout"], "pos7");
+        latencies.push(at.duration_since(sent));
+        std::thread::sleep(Duration::from_millis(30));
+    }
+    latencies.sort();
+    eprintln!(
+        "pos7 on a pty, default idle gap: latency median {:?}, max {:?}",
+        latencies[latencies.len() / 2],
+        latencies[latencies.len() - 1]
+    );
+    signal(&child, "INT");
+    child.wait().unwrap();
+
+    // --idle 0: the frame waits for the next frame.
+    let (mut child, lines) = spawn_lines(&device, &["--idle", "0"]);
+    prime(&mut master, &lines);
+    master.write_all(&pos7).unwrap();
+    master.flush().unwrap();
+    assert!(lines.recv_timeout(Duration::from_millis(500)).is_err());
+    master.write_all(&pos7).unwrap();
+    master.flush().unwrap();
+    let (_, line) = lines.recv_timeout(Duration::from_secs(5)).unwrap();
+    assert!(line.contains("\"pos7\""), "{line}");
+    signal(&child, "INT");
+    child.wait().unwrap();
+    drop(slave);
+}
+
+#[test]
+fn an_idle_gap_is_a_number_of_milliseconds_on_a_port() {
+    let dir = scratch("idle-options");
+    let file = dir.join("pos7.bin");
+    std::fs::write(&file, [0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x22]).unwrap();
+    let out = run(
+        &["decode", "omnitiles", "--idle", "3", file.to_str().unwrap()],
+        b"",
+    );
+    assert_eq!(out.code, 2);
+    assert!(out
+        .stderr
+        .contains("--idle is the silence on a live port: it needs --port"));
+    for bad in ["-1", "NaN", "inf"] {
+        let arg = format!("--idle={bad}");
+        let out = run(&["decode", "omnitiles", "--port", "/dev/null", &arg], b"");
+        assert_eq!(out.code, 2, "{bad}: {}", out.stderr);
+        assert!(
+            out.stderr.contains("must be a number from 0"),
+            "{}",
+            out.stderr
+        );
+    }
+}

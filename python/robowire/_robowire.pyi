@@ -67,6 +67,12 @@ class StreamDecoder(Generic[_T_co]):
         """The line went idle: a buffered frame only the next byte would decide."""
     def clear(self) -> None:
         """Forget a buffered partial frame (its bytes count as skipped)."""
+    def deadline(self, idle: float, /) -> Optional[float]:
+        """When the line counts as idle after ``idle`` seconds without a byte
+        (the last feed that left bytes held, plus ``idle``), or ``None``."""
+    def poll(self, idle: float, now: Optional[float] = None) -> list[_T_co]:
+        """At ``now`` (default ``time.monotonic()``), past :meth:`deadline`:
+        :meth:`settle`'s items, once per silence; else ``[]``."""
     def feed_array(self, data: _Bytes, /, masked: bool = False) -> dict[str, Any]:
         """Decode the next chunk into numpy structured arrays, one per message
         kind (Pixy2: and per listed element kind, ``blocks``,

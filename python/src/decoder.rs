@@ -29,6 +29,9 @@ pub struct PyStreamDecoder {
     engine: Box<dyn Engine>,
     items: Items,
     repr: String,
+    /// When the last chunk that left bytes buffered arrived, and whether
+    /// the caller gave that time (`t=`), until [`Self::poll`] settles.
+    held_since: Option<(f64, bool)>,
 }
 
 impl PyStreamDecoder {
@@ -38,8 +41,31 @@ impl PyStreamDecoder {
             engine,
             items,
             repr,
+            held_since: None,
         }
     }
+
+    /// After a chunk arrived at `t` (or now): the idle deadline runs from
+    /// it while bytes are held.
+    fn received(&mut self, py: Python<'_>, t: Option<f64>) -> PyResult<()> {
+        self.held_since = match (self.engine.buffered(), t) {
+            (0, _) => None,
+            (_, Some(t)) => Some((t, true)),
+            (_, None) => Some((monotonic(py)?, false)),
+        };
+        Ok(())
+    }
+}
+
+/// Python's `time.monotonic()`, the clock `feed` and `poll` default to.
+fn monotonic(py: Python<'_>) -> PyResult<f64> {
+    static MONOTONIC: PyOnceLock<Py<PyAny>> = PyOnceLock::new();
+    MONOTONIC
+        .get_or_try_init(py, || {
+            Ok::<_, PyErr>(py.import("time")?.getattr("monotonic")?.unbind())
+        })?
+        .call0(py)?
+        .extract(py)
 }
 
 #[pymethods]
@@ -60,6 +86,7 @@ impl PyStreamDecoder {
         let out = PyList::empty(data.py());
         let items = Items { t, ..self.items };
         with_bytes(data, |bytes| self.engine.feed(bytes, items, &out))??;
+        self.received(data.py(), t)?;
         Ok(out)
     }
 
@@ -110,6 +137,7 @@ impl PyStreamDecoder {
     #[pyo3(signature = (t = None))]
     fn finish<'py>(&mut self, py: Python<'py>, t: Option<f64>) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(py);
+        self.held_since = None;
         self.engine.finish(Items { t, ..self.items }, &out)?;
         Ok(out)
     }
@@ -129,6 +157,49 @@ impl PyStreamDecoder {
         Ok(out)
     }
 
+    /// When the line counts as idle after ``idle`` seconds without a byte:
+    /// the time of the last :meth:`feed` that left bytes buffered (its
+    /// ``t``, else ``time.monotonic()`` then) plus ``idle``, or ``None``
+    /// while nothing is held or once :meth:`poll` has settled since. Wait
+    /// for the next chunk until then (a read timeout, ``asyncio.wait_for``)
+    /// and call :meth:`poll` when it passes without one. A gap of a few
+    /// byte-times at the line's baud rate plus the adapter's latency (5 ms
+    /// suits most USB serial adapters; an FTDI at its default needs 20)
+    /// ends a frame only the next byte would decide, as the tool's live
+    /// ports do.
+    #[pyo3(signature = (idle, /))]
+    fn deadline(&self, idle: f64) -> Option<f64> {
+        self.held_since.map(|(at, _)| at + idle)
+    }
+
+    /// The idle deadline's check, sans-IO: at ``now`` (default
+    /// ``time.monotonic()``; the clock ``feed``'s ``t`` used), if
+    /// :meth:`deadline` has passed, :meth:`settle` and return its items
+    /// (with the last chunk's ``t`` when it was given one), once per
+    /// silence; otherwise an empty list.
+    #[pyo3(signature = (idle, now = None))]
+    fn poll<'py>(
+        &mut self,
+        py: Python<'py>,
+        idle: f64,
+        now: Option<f64>,
+    ) -> PyResult<Bound<'py, PyList>> {
+        let out = PyList::empty(py);
+        let Some((at, given)) = self.held_since else {
+            return Ok(out);
+        };
+        let now = match now {
+            Some(now) => now,
+            None => monotonic(py)?,
+        };
+        if now >= at + idle {
+            self.held_since = None;
+            let t = given.then_some(at);
+            self.engine.settle(Items { t, ..self.items }, &out)?;
+        }
+        Ok(out)
+    }
+
     /// Decode ``data`` as :meth:`feed` does but build no items: the number of
     /// frames decoded. For benchmarks (the cost of the items is the
     /// difference).
@@ -143,6 +214,7 @@ impl PyStreamDecoder {
     /// Forget a buffered partial frame (its bytes count as skipped), for
     /// example after the link was reopened. Offsets and counters carry on.
     fn clear(&mut self) {
+        self.held_since = None;
         self.engine.clear();
     }
 

@@ -9,13 +9,17 @@ use crate::port::{EncodePort, LiveArgs, PortSink, PortSource};
 use crate::suspicion;
 use crate::Failure;
 use clap::Args;
-use robowire::stream::{FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats, StreamDecoder};
+use robowire::stream::{
+    owned_event, FrameRules, OwnedEvent, OwnedFrame, Rejected, Stats, StreamDecoder,
+};
 use robowire::units::FieldTable;
+use robowire::Idle;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 use serde_json::Value;
 use std::io::{self, BufWriter, StdoutLock, Write};
 use std::path::PathBuf;
+use std::time::{Duration, Instant};
 
 /// What a protocol supplies to the tool when its library types carry the
 /// JSON-lines schema (their `serde` form): the decoder's rules, what one input
@@ -107,8 +111,14 @@ impl DecodeCommon {
     /// The input, as raw bytes or (with `--hex`) hex text, from a file, stdin
     /// or (with `--port`) a serial port.
     pub fn source(&self) -> Result<Box<dyn ByteSource>, Failure> {
+        if self.live.idle.is_some() && self.live.port.is_none() {
+            return Err(Failure::Invalid(
+                "--idle is the silence on a live port: it needs --port".to_owned(),
+            ));
+        }
         if let Some(device) = &self.live.port {
-            return Ok(Box::new(PortSource::open(device, self.live.baud)?));
+            let idle = self.live.idle_gap()?;
+            return Ok(Box::new(PortSource::open(device, self.live.baud, idle)?));
         }
         let input = Input::open(self.input.as_deref())?;
         Ok(if self.hex {
@@ -417,10 +427,32 @@ where
     E: Serialize,
 {
     let mut buf = vec![0u8; chunk];
+    // A live port's silence ends a frame only the next byte would decide.
+    let start = Instant::now();
+    let micros = || u64::try_from(start.elapsed().as_micros()).unwrap_or(u64::MAX);
+    let mut idle = match (source.idle_gap(), printer.judging()) {
+        (Some(gap), false) => Some(Idle::new(
+            u64::try_from(gap.as_micros()).unwrap_or(u64::MAX),
+        )),
+        _ => None,
+    };
     loop {
-        let n = match source.fill(&mut buf) {
+        let deadline = idle.and_then(|idle| idle.deadline());
+        let read = match deadline {
+            Some(at) => {
+                let wait = Duration::from_micros(at.saturating_sub(micros()));
+                source.fill_within(&mut buf, wait)
+            }
+            None => source.fill(&mut buf),
+        };
+        let n = match read {
             Ok(0) if source.ended() => break,
             Ok(0) => {
+                if idle.as_mut().is_some_and(|idle| idle.expired(micros())) {
+                    while let Some(event) = decoder.settle() {
+                        printer.event(annotate(owned_event::<R>(event)))?;
+                    }
+                }
                 // A pause on a live port: write out what is held.
                 printer.flush()?;
                 continue;
@@ -442,6 +474,9 @@ where
         }
         for event in decoder.feed(&buf[..n]) {
             printer.event(annotate(event))?;
+        }
+        if let Some(idle) = &mut idle {
+            idle.received(micros(), &decoder);
         }
         // Before a read that may wait, show what has been decoded so far.
         if source.may_wait() {

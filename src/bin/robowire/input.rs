@@ -160,6 +160,21 @@ pub trait ByteSource {
     fn ended(&self) -> bool {
         true
     }
+
+    /// The silence after which the line counts as idle, so that a frame
+    /// only the next byte would decide comes out ([`robowire::Idle`]): a
+    /// live port's; `None` for a file or a pipe, whose pauses say nothing
+    /// about where frames end.
+    fn idle_gap(&self) -> Option<Duration> {
+        None
+    }
+
+    /// [`fill`](Self::fill), waiting at most `wait` for the first byte:
+    /// `Ok(0)` after `wait` without one.
+    fn fill_within(&mut self, buf: &mut [u8], wait: Duration) -> Result<usize, Failure> {
+        let _ = wait;
+        self.fill(buf)
+    }
 }
 
 /// Raw bytes, as they are.

@@ -67,7 +67,35 @@ pub struct LiveArgs {
         display_order = 11
     )]
     pub start: Option<u64>,
+    /// With --port, the milliseconds of silence after which a frame that
+    /// only the next byte would decide is taken as ended (a 7-byte
+    /// OmniTiles frame that may begin a longer one). The default, 5 ms
+    /// plus 3.5 byte-times at --baud, covers a USB serial adapter's
+    /// latency on most hosts; an FTDI adapter at its default 16 ms latency
+    /// needs 20. 0 waits for the next frame instead.
+    #[arg(long, value_name = "MS", display_order = 12)]
+    pub idle: Option<f64>,
 }
+
+impl LiveArgs {
+    /// The idle gap of a live port at `--baud` (`None`: `--idle 0`).
+    pub fn idle_gap(&self) -> Result<Option<Duration>, Failure> {
+        match self.idle {
+            Some(ms) if !(ms.is_finite() && ms >= 0.0) => Err(Failure::Invalid(format!(
+                "--idle {ms}: the milliseconds of silence must be a number from 0"
+            ))),
+            Some(0.0) => Ok(None),
+            Some(ms) => Ok(Some(Duration::from_secs_f64(ms / 1000.0))),
+            None => {
+                let bytes = robowire::Idle::at_baud(self.baud, 3.5).gap();
+                Ok(Some(ADAPTER_LATENCY + Duration::from_micros(bytes)))
+            }
+        }
+    }
+}
+
+/// What the default idle gap allows for a USB serial adapter's latency.
+const ADAPTER_LATENCY: Duration = Duration::from_millis(5);
 
 /// The options of an `encode` that send frames to a port.
 #[derive(Debug, Args)]
@@ -146,11 +174,13 @@ pub struct PortSource {
     name: String,
     port: Box<dyn serialport::SerialPort>,
     stop: Arc<AtomicBool>,
+    idle: Option<Duration>,
 }
 
 impl PortSource {
-    /// Open `device` and end the run on Ctrl-C, SIGTERM or SIGHUP.
-    pub fn open(device: &str, baud: u32) -> Result<PortSource, Failure> {
+    /// Open `device` and end the run on Ctrl-C, SIGTERM or SIGHUP; the
+    /// line counts as idle after `idle` without a byte.
+    pub fn open(device: &str, baud: u32, idle: Option<Duration>) -> Result<PortSource, Failure> {
         let port = open(device, baud, READ_TIMEOUT)?;
         let stop = Arc::new(AtomicBool::new(false));
         let flag = Arc::clone(&stop);
@@ -166,6 +196,7 @@ impl PortSource {
             name: device.to_owned(),
             port,
             stop,
+            idle,
         })
     }
 }
@@ -202,6 +233,41 @@ impl crate::input::ByteSource for PortSource {
 
     fn ended(&self) -> bool {
         self.stop.load(Ordering::SeqCst)
+    }
+
+    fn idle_gap(&self) -> Option<Duration> {
+        self.idle
+    }
+
+    fn fill_within(&mut self, buf: &mut [u8], wait: Duration) -> Result<usize, Failure> {
+        if wait >= READ_TIMEOUT {
+            return self.fill(buf);
+        }
+        // One read that waits until the deadline, then the usual timeout.
+        let set = |port: &mut Box<dyn serialport::SerialPort>, timeout| {
+            port.set_timeout(timeout).map_err(|error| Failure::Io {
+                context: format!("{}: cannot set the read timeout", self.name),
+                error: error.into(),
+            })
+        };
+        set(&mut self.port, wait.max(Duration::from_micros(1)))?;
+        let read = self.port.read(buf);
+        set(&mut self.port, READ_TIMEOUT)?;
+        match read {
+            Ok(n) => Ok(n),
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    io::ErrorKind::TimedOut | io::ErrorKind::Interrupted
+                ) =>
+            {
+                Ok(0)
+            }
+            Err(error) => Err(Failure::Io {
+                context: format!("{}: the serial port failed (unplugged?)", self.name),
+                error,
+            }),
+        }
     }
 }
 
