@@ -52,9 +52,15 @@ impl Tables {
             .records
     }
 
-    /// The serde-form tables, for a protocol whose field table is `fields`.
-    pub fn flat(&mut self, fields: &'static FieldTable) -> &mut Flat {
-        self.flat.get_or_insert_with(|| Flat::new(fields))
+    /// Add `frame` (the decoder's [`frame`](Self::frame)-th) to the
+    /// serde-form tables of a protocol whose field table is `fields`.
+    pub fn push_flat<T: serde::Serialize + ?Sized>(
+        &mut self,
+        fields: &'static FieldTable,
+        frame: &T,
+    ) -> PyResult<()> {
+        let index = self.frame;
+        (self.flat.get_or_insert_with(|| Flat::new(fields))).push(frame, index)
     }
 
     /// The tables as a dict of numpy structured arrays, by kind (with
@@ -288,9 +294,8 @@ impl Tabular for Message {
 macro_rules! pixy2_tables {
     ($($message:ty),*) => {$(
         impl Tabular for robowire::pixy2::Envelope<$message> {
-                    fn record(frame: &OwnedFrame<Self>, tables: &mut Tables) -> PyResult<()> {
-                let index = tables.frame;
-                tables.flat(&robowire::pixy2::FIELD_INFO).push(frame, index)
+            fn record(frame: &OwnedFrame<Self>, tables: &mut Tables) -> PyResult<()> {
+                tables.push_flat(&robowire::pixy2::FIELD_INFO, frame)
             }
         }
     )*};

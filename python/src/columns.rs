@@ -27,15 +27,17 @@ use robowire::units::{FieldInfo, FieldTable};
 use serde::Serialize;
 
 use crate::array::records_as;
-use crate::walk::{Cell, Walk};
+use crate::walk::{span, Cell, Walk};
 
 /// The tables of one `feed_array` call, in order of first use.
 pub struct Flat {
     fields: &'static FieldTable,
     tables: Vec<Table>,
-    /// The rows a frame of each shape (its type, then its leaves' paths)
-    /// gives: worked out once per shape.
-    plans: HashMap<String, Vec<PlannedRow>, Fnv>,
+    /// The plan of each frame shape (its type, then its leaves' paths) in
+    /// `planned`: worked out once per shape.
+    plans: HashMap<String, usize, Fnv>,
+    /// The rows a frame of each shape gives.
+    planned: Vec<Vec<PlannedRow>>,
     /// Reused for each frame.
     walk: Walk,
     key: String,
@@ -214,6 +216,7 @@ impl Flat {
             fields,
             tables: Vec::new(),
             plans: HashMap::default(),
+            planned: Vec::new(),
             walk: Walk::default(),
             key: String::new(),
         }
@@ -233,14 +236,18 @@ impl Flat {
         self.key.push_str(kind);
         self.key.push('\0');
         self.key.push_str(&self.walk.names);
-        if !self.plans.contains_key(self.key.as_str()) {
-            let kind = kind.to_owned();
-            let plan = self.plan(&kind);
-            self.plans.insert(self.key.clone(), plan);
-        }
+        let plan = match self.plans.get(self.key.as_str()) {
+            Some(&plan) => plan,
+            None => {
+                let kind = kind.to_owned();
+                let rows = self.plan(&kind);
+                self.planned.push(rows);
+                self.plans.insert(self.key.clone(), self.planned.len() - 1);
+                self.planned.len() - 1
+            }
+        };
         let walk = &self.walk;
-        let plan = self.plans.get(self.key.as_str()).into_iter().flatten();
-        for row in plan {
+        for row in &self.planned[plan] {
             let table = &mut self.tables[row.table];
             for &(column, source) in &row.cells {
                 let cell = match source {
@@ -556,9 +563,6 @@ fn text(cell: Cell, texts: &str) -> Cow<'_, str> {
         Cell::I(v, _) => v.to_string().into(),
         Cell::F32(v) => v.to_string().into(),
         Cell::F64(v) => v.to_string().into(),
-        Cell::Str(start, len) => {
-            let start = start as usize;
-            texts.get(start..start + len as usize).unwrap_or("").into()
-        }
+        Cell::Str(start, len) => span(texts, start, len).into(),
     }
 }

@@ -30,7 +30,10 @@ pub struct PyStreamDecoder {
     items: Items,
     repr: String,
     /// When the last chunk that left bytes buffered arrived, and whether
-    /// the caller gave that time (`t=`), until [`Self::poll`] settles.
+    /// the caller gave that time (`t=`), until [`Self::poll`] settles: the
+    /// rule of `robowire::Idle`, kept here in the caller's float seconds
+    /// (any clock) with the gap given per call, which `Idle`'s fixed
+    /// integer ticks do not fit.
     held_since: Option<(f64, bool)>,
 }
 

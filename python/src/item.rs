@@ -120,17 +120,23 @@ impl Item {
         py: Python<'py>,
         key: &Bound<'py, PyAny>,
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        match key.cast::<PyString>() {
+            Ok(name) => self.named(py, name, &name.to_cow()?),
+            Err(_) => self.dict(py)?.get_item(key),
+        }
+    }
+
+    /// The value under the string key `key` (whose text is `name`): from
+    /// the dict once it is built, else from the event alone.
+    fn named<'py>(
+        &self,
+        py: Python<'py>,
+        key: &Bound<'py, PyString>,
+        name: &str,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
         if let Some(dict) = self.dict.get(py) {
             return dict.bind(py).get_item(key);
         }
-        let Ok(name) = key.cast::<PyString>() else {
-            return self.dict(py)?.get_item(key);
-        };
-        self.field(py, &name.to_cow()?)
-    }
-
-    /// The value under the string key `name`, from the event alone.
-    fn field<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
         match (name, self.t) {
             ("t", Some(t)) => Ok(Some(t.into_pyobject(py)?.into_any())),
             _ => self.event.field(py, name),
@@ -192,11 +198,7 @@ impl Item {
         let text = name.to_cow()?;
         let own = text.starts_with("__") || METHODS.contains(&&*text);
         if !own {
-            let value = match item.dict.get(py) {
-                Some(dict) => dict.bind(py).get_item(name)?,
-                None => item.field(py, &text)?,
-            };
-            if let Some(value) = value {
+            if let Some(value) = item.named(py, name, &text)? {
                 return Ok(value);
             }
         }

@@ -15,6 +15,7 @@ use serde::ser::{
 };
 
 use crate::engine::to_python;
+use crate::walk::KeyText;
 
 /// The value of the top-level key `key` of `value`'s serde map, or `None`
 /// where the map has no such key (or `value` is not a map).
@@ -192,7 +193,10 @@ impl SerializeMap for &mut Pick<'_, '_> {
     type Error = Stop;
 
     fn serialize_key<T: Serialize + ?Sized>(&mut self, key: &T) -> Result<(), Stop> {
-        self.matched = key.serialize(KeyIs(self.key))?;
+        let mut rest = Rest(Some(self.key));
+        key.serialize(KeyText(&mut rest))
+            .map_err(|e| Stop::Custom(e.0))?;
+        self.matched = rest.0 == Some("");
         Ok(())
     }
 
@@ -232,105 +236,13 @@ macro_rules! fields_are_entries {
 
 fields_are_entries!(SerializeStruct, SerializeStructVariant);
 
-/// Whether a map key is the string `.0` (a key that is not a string never
-/// is).
-struct KeyIs<'k>(&'k str);
+/// What of the wanted key a key's text has not matched yet (`None`: it
+/// differs), compared as the key is written, with no copy of it.
+struct Rest<'k>(Option<&'k str>);
 
-macro_rules! not_the_key {
-    ($($method:ident($($ty:ty),*)),* $(,)?) => {$(
-        fn $method(self, $(_: $ty),*) -> Result<bool, Stop> {
-            Ok(false)
-        }
-    )*};
-}
-
-impl Serializer for KeyIs<'_> {
-    type Ok = bool;
-    type Error = Stop;
-    type SerializeSeq = Impossible<bool, Stop>;
-    type SerializeTuple = Impossible<bool, Stop>;
-    type SerializeTupleStruct = Impossible<bool, Stop>;
-    type SerializeTupleVariant = Impossible<bool, Stop>;
-    type SerializeMap = Impossible<bool, Stop>;
-    type SerializeStruct = Impossible<bool, Stop>;
-    type SerializeStructVariant = Impossible<bool, Stop>;
-
-    fn serialize_str(self, v: &str) -> Result<bool, Stop> {
-        Ok(v == self.0)
-    }
-
-    not_the_key! {
-        serialize_bool(bool), serialize_i8(i8), serialize_i16(i16), serialize_i32(i32),
-        serialize_i64(i64), serialize_u8(u8), serialize_u16(u16), serialize_u32(u32),
-        serialize_u64(u64), serialize_f32(f32), serialize_f64(f64), serialize_char(char),
-        serialize_bytes(&[u8]), serialize_none(), serialize_unit(),
-        serialize_unit_struct(&'static str),
-        serialize_unit_variant(&'static str, u32, &'static str),
-    }
-
-    fn serialize_some<T: Serialize + ?Sized>(self, value: &T) -> Result<bool, Stop> {
-        value.serialize(self)
-    }
-
-    fn serialize_newtype_struct<T: Serialize + ?Sized>(
-        self,
-        _: &'static str,
-        value: &T,
-    ) -> Result<bool, Stop> {
-        value.serialize(self)
-    }
-
-    fn serialize_newtype_variant<T: Serialize + ?Sized>(
-        self,
-        _: &'static str,
-        _: u32,
-        _: &'static str,
-        _: &T,
-    ) -> Result<bool, Stop> {
-        Ok(false)
-    }
-
-    fn serialize_seq(self, _: Option<usize>) -> Result<Self::SerializeSeq, Stop> {
-        Err(Stop::Custom("a map key that is a sequence".into()))
-    }
-
-    fn serialize_tuple(self, _: usize) -> Result<Self::SerializeTuple, Stop> {
-        Err(Stop::Custom("a map key that is a tuple".into()))
-    }
-
-    fn serialize_tuple_struct(
-        self,
-        _: &'static str,
-        _: usize,
-    ) -> Result<Self::SerializeTupleStruct, Stop> {
-        Err(Stop::Custom("a map key that is a tuple".into()))
-    }
-
-    fn serialize_tuple_variant(
-        self,
-        _: &'static str,
-        _: u32,
-        _: &'static str,
-        _: usize,
-    ) -> Result<Self::SerializeTupleVariant, Stop> {
-        Err(Stop::Custom("a map key that is a tuple".into()))
-    }
-
-    fn serialize_map(self, _: Option<usize>) -> Result<Self::SerializeMap, Stop> {
-        Err(Stop::Custom("a map key that is a map".into()))
-    }
-
-    fn serialize_struct(self, _: &'static str, _: usize) -> Result<Self::SerializeStruct, Stop> {
-        Err(Stop::Custom("a map key that is a struct".into()))
-    }
-
-    fn serialize_struct_variant(
-        self,
-        _: &'static str,
-        _: u32,
-        _: &'static str,
-        _: usize,
-    ) -> Result<Self::SerializeStructVariant, Stop> {
-        Err(Stop::Custom("a map key that is a struct".into()))
+impl fmt::Write for Rest<'_> {
+    fn write_str(&mut self, text: &str) -> fmt::Result {
+        self.0 = self.0.and_then(|rest| rest.strip_prefix(text));
+        Ok(())
     }
 }

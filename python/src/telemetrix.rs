@@ -137,15 +137,14 @@ where
     fn feed_table(&mut self, data: &[u8], tables: &mut Tables) -> PyResult<()> {
         let mut input = data;
         let mut result = Ok(());
-        let mut index = frames_decoded(&self.decoder.stats());
+        tables.frame = frames_decoded(&self.decoder.stats());
         while let Some(event) = self.decoder.decode(&mut input) {
             if let Ok(frame) = owned_event::<Framing<S>>(event) {
                 let frame = Self::annotated(&mut self.context, frame);
                 if result.is_ok() {
-                    let flat = tables.flat(&robowire::telemetrix::FIELD_INFO);
-                    result = flat.push(&frame, index);
+                    result = tables.push_flat(&robowire::telemetrix::FIELD_INFO, &frame);
                 }
-                index += 1;
+                tables.frame += 1;
             }
         }
         result

@@ -23,6 +23,12 @@ pub enum Cell {
     Str(u32, u32),
 }
 
+/// The text of the span `start`, `len` of `texts`.
+pub fn span(texts: &str, start: u32, len: u32) -> &str {
+    let start = start as usize;
+    texts.get(start..start + len as usize).unwrap_or("")
+}
+
 /// The leaves of one value.
 #[derive(Default)]
 pub struct Walk {
@@ -51,8 +57,7 @@ impl Walk {
 
     /// The text of a `Str` span.
     pub fn text(&self, start: u32, len: u32) -> &str {
-        let start = start as usize;
-        self.texts.get(start..start + len as usize).unwrap_or("")
+        span(&self.texts, start, len)
     }
 
     fn leaf(&mut self, cell: Option<Cell>) -> Result<(), WalkError> {
@@ -350,8 +355,9 @@ macro_rules! members {
 
 members!(SerializeStruct, SerializeStructVariant);
 
-/// Writes a map key (a name, or a number) onto the path.
-struct KeyText<'p>(&'p mut String);
+/// Writes a map key (a name, or a number) into `W`: the end of a walk's
+/// path, or a field read's comparison with the key it wants.
+pub struct KeyText<'p, W: fmt::Write>(pub &'p mut W);
 
 fn not_a_name<T>() -> Result<T, WalkError> {
     Err(WalkError("a map key that is not a name".into()))
@@ -365,7 +371,7 @@ macro_rules! numeric_keys {
     )*};
 }
 
-impl ser::Serializer for KeyText<'_> {
+impl<W: fmt::Write> ser::Serializer for KeyText<'_, W> {
     type Ok = ();
     type Error = WalkError;
     type SerializeSeq = Impossible<(), WalkError>;
@@ -377,8 +383,7 @@ impl ser::Serializer for KeyText<'_> {
     type SerializeStructVariant = Impossible<(), WalkError>;
 
     fn serialize_str(self, v: &str) -> Result<(), WalkError> {
-        self.0.push_str(v);
-        Ok(())
+        self.0.write_str(v).map_err(|e| WalkError(e.to_string()))
     }
 
     numeric_keys! {
@@ -421,8 +426,9 @@ impl ser::Serializer for KeyText<'_> {
         _: u32,
         variant: &'static str,
     ) -> Result<(), WalkError> {
-        self.0.push_str(variant);
-        Ok(())
+        self.0
+            .write_str(variant)
+            .map_err(|e| WalkError(e.to_string()))
     }
 
     fn serialize_newtype_struct<T: Serialize + ?Sized>(
