@@ -9,22 +9,15 @@ from ._stats import Stats
 __all__ = ["Item", "StreamDecoder", "__version__", "omnitiles", "pixy2", "telemetrix"]
 __version__: str
 
-# The stubs import only `typing` (Python 3.9's): they need no
-# typing_extensions, which the package does not depend on.
+# The stubs import `typing`, and `deprecated` from `warnings` (3.13) or
+# typing_extensions, which the package depends on before 3.13.
 
 _Bytes = Union[bytes, bytearray, memoryview]
 """What the decoders take: ``bytes``, ``bytearray`` or ``memoryview``."""
 
-@final
-class Item(Mapping[str, Any]):
-    """A decoded item kept in Rust: every default (typed) item but OmniTiles
-    telemetry, and every item of the deprecated ``lazy=True``.
-
-    A read-only mapping with exactly the keys and values of the dict a ``typed=False``
-    decoder returns; equal to that dict. Fields read as attributes too
-    (``item.speed``). A field read alone is made from the frame, without a
-    dict; iterating, ``len``, ``==`` and :meth:`to_dict` build the dict once.
-    """
+class _Fields(Mapping[str, Any]):
+    """What :class:`Item` and the message classes share (a name of the stubs
+    only): a read-only mapping of the item's dict."""
 
     @property
     def offset(self) -> int:
@@ -38,9 +31,22 @@ class Item(Mapping[str, Any]):
     def __getitem__(self, key: str, /) -> Any: ...
     def __iter__(self) -> Iterator[str]: ...
     def __len__(self) -> int: ...
-    def __getattr__(self, name: str) -> Any: ...
     __hash__: ClassVar[None]  # type: ignore[assignment]
     """Unhashable, as the dict it equals; pickles and copies as that dict."""
+
+class Item(_Fields):
+    """A decoded item kept in Rust: what OmniTiles commands, rejections and
+    every item of the deprecated ``lazy=True`` are, and at run time the base
+    of the Telemetrix and Pixy2 message classes.
+
+    A read-only mapping with exactly the keys and values of the dict a ``typed=False``
+    decoder returns; equal to that dict. Fields read as attributes too
+    (``item.speed``, typed ``Any``). A field read alone is made from the
+    frame, without a dict; iterating, ``len``, ``==`` and :meth:`to_dict`
+    build the dict once.
+    """
+
+    def __getattr__(self, name: str) -> Any: ...
 
 _Dict = dict[str, Any]
 """An item of a ``typed=False`` decoder: a dict in the JSON-lines schema."""

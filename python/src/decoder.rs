@@ -12,8 +12,10 @@ use crate::engine::{detached_from_size, stats_dict, with_bytes, Engine, Form, It
 /// The stream decoder every protocol's ``Decoder`` is: feed it bytes as they
 /// arrive, in chunks of any size, and it returns the decoded items.
 ///
-/// Each item is a typed object (:class:`robowire.omnitiles.Telemetry`, else
-/// :class:`robowire.Item`) that reads its fields as attributes, or with
+/// Each item is a typed object (:class:`robowire.omnitiles.Telemetry`, a
+/// Telemetrix or Pixy2 message class such as
+/// :class:`robowire.telemetrix.AnalogReport`, else :class:`robowire.Item`)
+/// that reads its fields as attributes, or with
 /// ``typed=False`` a dict, in the ``robowire`` command-line tool's JSON-lines
 /// schema either way: ``offset`` (of the frame's first byte, counted from the first byte
 /// ever fed), ``len`` (the frame's length), then the message's own keys
@@ -253,8 +255,9 @@ impl PyStreamDecoder {
     }
 
     /// Whether items are typed objects (the default, not ``typed=False``): an
-    /// :class:`robowire.omnitiles.Telemetry` per telemetry frame, a
-    /// :class:`robowire.Item` for every other message and rejection.
+    /// :class:`robowire.omnitiles.Telemetry` per telemetry frame, a Telemetrix
+    /// or Pixy2 message in its type's class, a :class:`robowire.Item` for an
+    /// OmniTiles command and a rejection.
     #[getter]
     fn typed(&self) -> bool {
         self.items.form == Form::Typed

@@ -7,12 +7,14 @@ use pyo3::exceptions::{PyAttributeError, PyKeyError};
 use pyo3::ffi;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
-use pyo3::types::{PyDict, PyIterator, PyString, PyTuple};
+use pyo3::types::{PyDict, PyIterator, PyString, PyTuple, PyType};
 use robowire::stream::{OwnedFrame, Rejected};
 use serde::Serialize;
 
 use crate::engine::{timed_dict, to_python};
+use crate::kinds;
 use crate::pick::field;
+use crate::typed::untracked;
 
 /// The names of `Item`'s own attributes, which fields do not shadow.
 const METHODS: [&str; 6] = ["offset", "to_dict", "get", "keys", "values", "items"];
@@ -87,12 +89,15 @@ impl Erased for Unpickled {
 /// {...}``); :meth:`to_dict` gives a plain dict. Items that are never read
 /// cost almost nothing, so a host that looks at one frame in a hundred, or
 /// only at :attr:`offset`, goes several times faster.
-#[pyclass(module = "robowire", name = "Item", frozen, mapping)]
+#[pyclass(module = "robowire", name = "Item", frozen, mapping, subclass)]
 pub struct Item {
     event: Box<dyn Erased>,
     /// The receive time, the dict's `"t"` (first) when there is one.
     t: Option<f64>,
     dict: PyOnceLock<Py<PyDict>>,
+    /// The fields that read as `None` as attributes when the frame lacks
+    /// them (a message class's optional ones; none for a plain `Item`).
+    optional: [&'static [&'static str]; 2],
 }
 
 impl Item {
@@ -102,6 +107,16 @@ impl Item {
             event,
             t,
             dict: PyOnceLock::new(),
+            optional: [&[], &[]],
+        }
+    }
+
+    /// The item with the fields `common` and `own` reading as `None` when
+    /// the frame lacks them.
+    pub fn optional(self, common: &'static [&'static str], own: &'static [&'static str]) -> Self {
+        Self {
+            optional: [common, own],
+            ..self
         }
     }
 
@@ -201,6 +216,9 @@ impl Item {
             if let Some(value) = item.named(py, name, &text)? {
                 return Ok(value);
             }
+            if item.optional.iter().any(|fields| fields.contains(&&*text)) {
+                return Ok(py.None().into_bound(py));
+            }
         }
         // SAFETY: both pointers are live objects for the call, which
         // returns a new reference or NULL with an exception set.
@@ -265,8 +283,9 @@ impl Item {
         }
     }
 
-    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
-        Ok(format!("Item({})", self.dict(py)?.repr()?))
+    fn __repr__(slf: &Bound<'_, Self>) -> PyResult<String> {
+        let dict = slf.get().dict(slf.py())?.repr()?;
+        Ok(format!("{}({dict})", slf.get_type().name()?))
     }
 
     /// Pickles (and copies) as its dict: the copy is equal to the item and
@@ -279,19 +298,36 @@ impl Item {
     }
 
     /// The item whose dict is ``dict`` (what unpickling calls): its
-    /// ``offset`` key is the item's offset.
-    #[staticmethod]
-    fn _from_dict(dict: Bound<'_, PyDict>) -> PyResult<Self> {
+    /// ``offset`` key is the item's offset, and its class ``cls`` (a
+    /// message class: the one of the dict's ``type``).
+    #[classmethod]
+    fn _from_dict<'py>(
+        cls: &Bound<'py, PyType>,
+        dict: Bound<'py, PyDict>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let py = cls.py();
         let offset = dict
-            .get_item(pyo3::intern!(dict.py(), "offset"))?
+            .get_item(pyo3::intern!(py, "offset"))?
             .ok_or_else(|| PyKeyError::new_err("offset"))?
             .extract()?;
-        Ok(Self::new(
+        let kind: Option<String> = match dict.get_item(pyo3::intern!(py, "type"))? {
+            Some(kind) => kind.extract().ok(),
+            None => None,
+        };
+        let item = Self::new(
             Box::new(Unpickled {
                 offset,
                 dict: dict.unbind(),
             }),
             None,
-        ))
+        );
+        let kind = kind.as_deref().unwrap_or("");
+        if kinds::telemetrix::owns(cls) {
+            kinds::telemetrix::wrap(py, kind, item)
+        } else if kinds::pixy2::owns(cls) {
+            kinds::pixy2::wrap(py, kind, item)
+        } else {
+            untracked(py, item)
+        }
     }
 }

@@ -11,6 +11,7 @@ mod columns;
 mod decoder;
 mod engine;
 mod item;
+mod kinds;
 mod omnitiles;
 mod pick;
 mod pixy2;

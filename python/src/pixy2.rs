@@ -46,14 +46,15 @@ fn engine(source: &str, checksum_only: bool) -> PyResult<Box<dyn Engine>> {
 /// ``checksum_only=True`` accepts only the checksum form (``af c1``), as a
 /// Pixy2 always answers over SPI, I2C and UART: then no unverifiable frame
 /// can be decoded. ``errors=True`` returns rejected candidates as items;
-/// items are :class:`robowire.Item` objects (fields as attributes, built on
-/// first read); ``typed=False`` returns dicts instead. ``typed=True`` and
+/// items are objects of each message type's class (``blocks``:
+/// :class:`Blocks`, fields as typed attributes, each made
+/// from the frame when read); ``typed=False`` returns dicts instead. ``typed=True`` and
 /// ``lazy=True`` are deprecated and warn.
 ///
 /// >>> from robowire import pixy2
 /// >>> d = pixy2.Decoder(source="device")
 /// >>> d.feed(bytes.fromhex("af c1 01 04 3d 00 3d 00 00 00"))
-/// [Item({'offset': 0, 'len': 10, 'type': 'result', 'checksum': True, 'value': 61})]
+/// [Result({'offset': 0, 'len': 10, 'type': 'result', 'checksum': True, 'value': 61})]
 #[pyclass(module = "robowire.pixy2", name = "Decoder", extends = PyStreamDecoder)]
 pub struct Pixy2Decoder;
 
@@ -112,5 +113,6 @@ pub fn module(py: Python<'_>) -> PyResult<Bound<'_, PyModule>> {
     m.add_class::<Pixy2Decoder>()?;
     m.add_function(wrap_pyfunction!(encode, &m)?)?;
     m.add_function(wrap_pyfunction!(field_info, &m)?)?;
+    crate::kinds::pixy2::add(&m)?;
     Ok(m)
 }

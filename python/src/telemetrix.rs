@@ -181,14 +181,15 @@ fn dialect(name: &str) -> PyResult<Dialect> {
 /// 1.1). ``lenient=True`` accepts report ids the dialect does not define as
 /// ``unknown_report`` when a valid report follows directly (not with
 /// ``source="host"``). ``errors=True`` returns rejected candidates as items;
-/// items are :class:`robowire.Item` objects (fields as attributes, built on
-/// first read); ``typed=False`` returns dicts instead. ``typed=True`` and
+/// items are objects of each message type's class (``analog_report``:
+/// :class:`AnalogReport`, fields as typed attributes, each made
+/// from the frame when read); ``typed=False`` returns dicts instead. ``typed=True`` and
 /// ``lazy=True`` are deprecated and warn.
 ///
 /// >>> from robowire import telemetrix
 /// >>> d = telemetrix.Decoder(source="pico")
 /// >>> d.feed(bytes.fromhex("04 03 1a 04 c9 05 0b 09 0a 00 77"))
-/// [Item({'offset': 0, 'len': 5, 'type': 'analog_report', 'pin': 26, 'value': 1225}), Item({'offset': 5, 'len': 6, 'type': 'sonar_distance', 'trig': 9, 'echo': 10, 'cm': 119})]
+/// [AnalogReport({'offset': 0, 'len': 5, 'type': 'analog_report', 'pin': 26, 'value': 1225}), SonarDistance({'offset': 5, 'len': 6, 'type': 'sonar_distance', 'trig': 9, 'echo': 10, 'cm': 119})]
 #[pyclass(module = "robowire.telemetrix", name = "Decoder", extends = PyStreamDecoder)]
 pub struct TmxDecoder;
 
@@ -263,5 +264,6 @@ pub fn module(py: Python<'_>) -> PyResult<Bound<'_, PyModule>> {
     m.add_class::<TmxDecoder>()?;
     m.add_function(wrap_pyfunction!(encode, &m)?)?;
     m.add_function(wrap_pyfunction!(field_info, &m)?)?;
+    crate::kinds::telemetrix::add(&m)?;
     Ok(m)
 }

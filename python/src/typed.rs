@@ -3,9 +3,11 @@
 //! OmniTiles telemetry, the frame a host reads at rate, is a
 //! [`PyTelemetry`] holding the library's `Copy` [`Telemetry`]: creating one
 //! is a single allocation the garbage collector does not track, and each
-//! attribute builds its Python value only when read. Every other message, and
-//! every rejection, is a [`robowire.Item`](crate::item::Item): the same
-//! attributes and keys, built (once, as a dict) on the first read.
+//! attribute builds its Python value only when read. A Telemetrix or Pixy2
+//! message is in its type's class ([`kinds`]), a subclass of
+//! [`robowire.Item`](crate::item::Item), as OmniTiles commands and
+//! rejections are: a field read alone is made from the frame, the dict
+//! only for iteration and comparison.
 
 use pyo3::basic::CompareOp;
 use std::hash::{DefaultHasher, Hash, Hasher};
@@ -19,6 +21,7 @@ use serde::Serialize;
 
 use crate::engine::{encode_frame, timed_dict, to_python};
 use crate::item::Item;
+use crate::kinds;
 use crate::schema::exact_f64;
 
 /// A new Python object of class `T`, not tracked by the garbage collector.
@@ -31,7 +34,15 @@ pub fn untracked<T: pyo3::PyClass + Into<PyClassInitializer<T>>>(
     py: Python<'_>,
     value: T,
 ) -> PyResult<Bound<'_, PyAny>> {
-    let item = Bound::new(py, value)?;
+    untracked_init(py, value.into())
+}
+
+/// [`untracked`] for an initializer (a subclass's, as the message classes').
+pub fn untracked_init<T: pyo3::PyClass>(
+    py: Python<'_>,
+    init: PyClassInitializer<T>,
+) -> PyResult<Bound<'_, PyAny>> {
+    let item = Bound::new(py, init)?;
     // SAFETY: `item` is a live object of a GC type (PyO3 gives every class
     // one); untracking it only keeps the collector from visiting it, and its
     // deallocation may untrack it again.
@@ -86,10 +97,71 @@ impl Typed for Message {
 }
 
 impl Typed for robowire::omnitiles::Command {}
-impl Typed for robowire::telemetrix::MessageBuf {}
-impl Typed for robowire::pixy2::Envelope<robowire::pixy2::ResponseBuf> {}
-impl Typed for robowire::pixy2::Envelope<robowire::pixy2::Request> {}
-impl Typed for robowire::pixy2::Envelope<robowire::pixy2::MessageBuf> {}
+/// A message's `type` name, which picks its class ([`kinds`]).
+trait TypeName {
+    fn type_name(&self) -> &'static str;
+}
+
+impl TypeName for robowire::telemetrix::MessageBuf {
+    fn type_name(&self) -> &'static str {
+        self.message().name()
+    }
+}
+
+impl TypeName for robowire::pixy2::Request {
+    fn type_name(&self) -> &'static str {
+        self.name()
+    }
+}
+
+impl TypeName for robowire::pixy2::ResponseBuf {
+    fn type_name(&self) -> &'static str {
+        self.as_response().name()
+    }
+}
+
+impl TypeName for robowire::pixy2::MessageBuf {
+    fn type_name(&self) -> &'static str {
+        match self {
+            Self::Request(request) => request.type_name(),
+            Self::Response(response) => response.type_name(),
+        }
+    }
+}
+
+impl<B: TypeName> TypeName for robowire::pixy2::Envelope<B> {
+    fn type_name(&self) -> &'static str {
+        self.body.type_name()
+    }
+}
+
+/// Messages with a class per `type`: each item in its type's class of
+/// the protocol (`wrap`).
+macro_rules! classed {
+    ($($message:ty => $wrap:path),* $(,)?) => {$(
+        impl Typed for $message {
+            // Inlined into `append`, the frame moves once, into its box: a
+            // call would copy the few hundred bytes of a `MessageBuf` again.
+            #[inline(always)]
+            fn typed(
+                py: Python<'_>,
+                frame: OwnedFrame<Self>,
+                t: Option<f64>,
+            ) -> PyResult<Bound<'_, PyAny>> {
+                let frame = Box::new(frame);
+                let name = frame.message.type_name();
+                $wrap(py, name, Item::new(frame, t))
+            }
+        }
+    )*};
+}
+
+classed!(
+    robowire::telemetrix::MessageBuf => kinds::telemetrix::wrap,
+    robowire::pixy2::Envelope<robowire::pixy2::ResponseBuf> => kinds::pixy2::wrap,
+    robowire::pixy2::Envelope<robowire::pixy2::Request> => kinds::pixy2::wrap,
+    robowire::pixy2::Envelope<robowire::pixy2::MessageBuf> => kinds::pixy2::wrap,
+);
 
 /// The answer of `__richcmp__` for `op` when the items are `equal` (`None`:
 /// the other object is of no type this one compares with).

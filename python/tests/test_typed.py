@@ -17,7 +17,7 @@ import pytest
 import robowire
 from robowire import omnitiles, pixy2, telemetrix
 
-from conftest import CASES, Case, decode_all
+from conftest import CASES, Case, _module_of, decode_all
 
 POS7 = bytes.fromhex("a5 60 d0 07 ff ff 35")
 UWB15 = bytes.fromhex("a5 60 d0 07 e8 03 dc 05 c4 09 ff ff b8 0b 91")
@@ -28,6 +28,17 @@ def attribute_form(value: Any) -> Any:
     return tuple(value) if isinstance(value, list) else value
 
 
+def expected_class(case: Case, d: dict[str, Any]) -> type:
+    """The class of the typed item whose dict is ``d``: OmniTiles telemetry's,
+    a Telemetrix or Pixy2 message's own, else (commands, rejections) Item."""
+    if d.get("type") == "telemetry":
+        return omnitiles.Telemetry
+    module = _module_of(case.make)
+    if module is omnitiles or "type" not in d:
+        return robowire.Item
+    return getattr(module, "".join(w.capitalize() for w in d["type"].split("_")))
+
+
 def test_typed_items_equal_the_dicts(case: Case) -> None:
     typed = decode_all(case, typed=True)
     dicts = decode_all(case)
@@ -35,7 +46,7 @@ def test_typed_items_equal_the_dicts(case: Case) -> None:
     assert typed == dicts and dicts == typed
     assert [item.to_dict() for item in typed] == dicts
     for item, d in zip(typed, dicts):
-        assert type(item) is (omnitiles.Telemetry if d.get("type") == "telemetry" else robowire.Item)
+        assert type(item) is expected_class(case, d)
         for key, value in d.items():
             assert item[key] == attribute_form(value) or item[key] == value, key
             assert getattr(item, key) == item[key], key

@@ -29,6 +29,8 @@ def mypy(*paths: Path) -> tuple[int, set[int]]:
     pytest.importorskip("mypy")
     run = subprocess.run(
         [sys.executable, "-m", "mypy", "--strict", "--no-incremental", "--python-executable", sys.executable]
+        # Deprecated overloads (typed=True, lazy=True) are errors, as in pyright --strict.
+        + ["--enable-error-code", "deprecated"]
         + [str(p) for p in paths],
         capture_output=True,
         text=True,

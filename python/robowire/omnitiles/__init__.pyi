@@ -1,10 +1,16 @@
 """OmniTiles: host commands and tile telemetry (``a5``, id, payload, sum)."""
 
+import sys
 from collections.abc import Iterable, Iterator, Mapping
 from typing import Any, ClassVar, Generic, Literal, Optional, TypedDict, TypeVar, Union, final, overload
 
 from .._robowire import Item, StreamDecoder, _Bytes, _Dict
 from .._stats import Stats
+
+if sys.version_info >= (3, 13):
+    from warnings import deprecated
+else:
+    from typing_extensions import deprecated
 
 _Source = Literal["tile", "host", "any"]
 _Layouts = Union[str, Iterable[str], None]
@@ -150,7 +156,7 @@ class Decoder(StreamDecoder[_T_co]):
         layouts: _Layouts = None,
         errors: Literal[False] = False,
         lazy: Literal[False] = False,
-        typed: Optional[Literal[True]] = None,
+        typed: None = None,
     ) -> Decoder[Telemetry]: ...
     @overload
     def __new__(
@@ -158,8 +164,8 @@ class Decoder(StreamDecoder[_T_co]):
         source: Literal["host"],
         layouts: _Layouts = None,
         errors: bool = False,
-        lazy: bool = False,
-        typed: Optional[Literal[True]] = None,
+        lazy: Literal[False] = False,
+        typed: None = None,
     ) -> Decoder[Item]: ...
     @overload
     def __new__(
@@ -178,8 +184,30 @@ class Decoder(StreamDecoder[_T_co]):
         layouts: _Layouts = None,
         errors: bool = False,
         lazy: Literal[False] = False,
-        typed: Optional[Literal[True]] = None,
+        typed: None = None,
     ) -> Decoder[Union[Telemetry, Item]]: ...
+    @overload
+    @deprecated("typed=True is the default: drop it")
+    def __new__(
+        cls,
+        source: _Source = "any",
+        layouts: _Layouts = None,
+        errors: bool = False,
+        lazy: Literal[False] = False,
+        *,
+        typed: Literal[True],
+    ) -> Decoder[Union[Telemetry, Item]]: ...
+    @overload
+    @deprecated("lazy=True is deprecated: the default typed items read a field without a dict")
+    def __new__(
+        cls,
+        source: _Source = "any",
+        layouts: _Layouts = None,
+        errors: bool = False,
+        *,
+        lazy: Literal[True],
+        typed: Optional[Literal[False]] = None,
+    ) -> Decoder[Item]: ...
     @overload
     def __new__(
         cls,
@@ -202,7 +230,7 @@ class DatagramDecoder(Generic[_T_co]):
         layouts: _Layouts = None,
         errors: Literal[False] = False,
         lazy: Literal[False] = False,
-        typed: Optional[Literal[True]] = None,
+        typed: None = None,
     ) -> DatagramDecoder[Telemetry]: ...
     @overload
     def __new__(
@@ -210,8 +238,8 @@ class DatagramDecoder(Generic[_T_co]):
         source: Literal["host"],
         layouts: _Layouts = None,
         errors: bool = False,
-        lazy: bool = False,
-        typed: Optional[Literal[True]] = None,
+        lazy: Literal[False] = False,
+        typed: None = None,
     ) -> DatagramDecoder[Item]: ...
     @overload
     def __new__(
@@ -230,8 +258,30 @@ class DatagramDecoder(Generic[_T_co]):
         layouts: _Layouts = None,
         errors: bool = False,
         lazy: Literal[False] = False,
-        typed: Optional[Literal[True]] = None,
+        typed: None = None,
     ) -> DatagramDecoder[Union[Telemetry, Item]]: ...
+    @overload
+    @deprecated("typed=True is the default: drop it")
+    def __new__(
+        cls,
+        source: _Source = "any",
+        layouts: _Layouts = None,
+        errors: bool = False,
+        lazy: Literal[False] = False,
+        *,
+        typed: Literal[True],
+    ) -> DatagramDecoder[Union[Telemetry, Item]]: ...
+    @overload
+    @deprecated("lazy=True is deprecated: the default typed items read a field without a dict")
+    def __new__(
+        cls,
+        source: _Source = "any",
+        layouts: _Layouts = None,
+        errors: bool = False,
+        *,
+        lazy: Literal[True],
+        typed: Optional[Literal[False]] = None,
+    ) -> DatagramDecoder[Item]: ...
     @overload
     def __new__(
         cls,

@@ -4,7 +4,7 @@ must each report an error on every line marked ``# mistake`` and on no other
 
 from __future__ import annotations
 
-from robowire import omnitiles, telemetrix
+from robowire import omnitiles, pixy2, telemetrix
 from robowire.omnitiles.sdk import StreamParser
 
 tile = omnitiles.Decoder(source="tile")
@@ -26,3 +26,12 @@ telemetrix.Decoder(dialect="mirte14")  # mistake: no such dialect
 tile.feed("a5 30 c8 f8")  # mistake: text, not bytes
 for frame in StreamParser().feed(b""):
     mm: float = frame.m1_pos_mm  # mistake: None for a 0xFFFF position, unlike the SDK
+for m in telemetrix.Decoder(source="pico").feed(b""):
+    if isinstance(m, telemetrix.AnalogReport):
+        volts: str = m.value  # mistake: an ADC count is an int
+    if m.type == "sonar_distance":
+        metres: int = m.m  # mistake: only mirte 1.2 reports whole metres
+for p in pixy2.Decoder(source="device").feed(b""):
+    width: int = p.width  # mistake: only a resolution response has a width
+omnitiles.Decoder(source="tile", typed=True)  # mistake: deprecated, typed items are the default
+telemetrix.Decoder(lazy=True)  # mistake: deprecated, items read a field without a dict

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Any, Optional, Union, assert_type
 
 from robowire import Item, Stats, StreamDecoder, omnitiles, pixy2, telemetrix
@@ -28,10 +29,28 @@ assert_type(omnitiles.Decoder(source="tile", typed=False).feed(CHUNK), list[dict
 assert_type(omnitiles.DatagramDecoder(source="tile").decode(CHUNK), list[omnitiles.Telemetry])
 assert_type(omnitiles.DatagramDecoder(typed=False).decode(CHUNK), list[dict[str, Any]])
 
-assert_type(pixy2.Decoder(source="device").feed(CHUNK), list[Item])
+assert_type(pixy2.Decoder(source="device").feed(CHUNK), list[pixy2.AnyMessage])
+assert_type(pixy2.Decoder(errors=True).feed(CHUNK), list[Union[pixy2.AnyMessage, Item]])
 assert_type(pixy2.Decoder(typed=False).feed(CHUNK), list[dict[str, Any]])
-assert_type(telemetrix.Decoder(source="pico").feed(CHUNK), list[Item])
+assert_type(telemetrix.Decoder(source="pico").feed(CHUNK), list[telemetrix.AnyMessage])
 assert_type(telemetrix.Decoder(source="pico", typed=False).feed(CHUNK), list[dict[str, Any]])
+
+# A message class per type: narrowed by isinstance or by its type.
+for m in telemetrix.Decoder(source="pico").feed(CHUNK):
+    assert_type(m.offset, int)
+    assert_type(m.t, Optional[float])
+    if m.type == "analog_report":
+        assert_type(m, telemetrix.AnalogReport)
+        assert_type(m.value, int)
+    if isinstance(m, telemetrix.SonarDistance):
+        assert_type(m.cm, Union[int, str])
+        assert_type(m.m, Optional[int])
+    fields: Mapping[str, Any] = m
+    base: telemetrix.Message = m
+for p in pixy2.Decoder(source="device").feed(CHUNK):
+    if isinstance(p, pixy2.Blocks):
+        assert_type(p.blocks, list[dict[str, Any]])
+        assert_type(p.checksum, bool)
 
 # Every decoder is a StreamDecoder of its items.
 decoder: StreamDecoder[omnitiles.Telemetry] = tile
