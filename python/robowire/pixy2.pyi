@@ -1,7 +1,7 @@
 """Pixy2: host requests and device responses (``ae c1`` / ``af c1`` frames)."""
 
 import sys
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any, Literal, Optional, TypeVar, Union, final, overload
 
 from ._robowire import Item, StreamDecoder, _Dict, _Fields
@@ -37,6 +37,7 @@ class Decoder(StreamDecoder[_T_co]):
         lazy: Literal[False] = False,
         *,
         typed: Literal[False],
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[_Dict]: ...
     @overload
     def __new__(
@@ -46,6 +47,7 @@ class Decoder(StreamDecoder[_T_co]):
         errors: Literal[False] = False,
         lazy: Literal[False] = False,
         typed: None = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[AnyMessage]: ...
     @overload
     def __new__(
@@ -55,6 +57,7 @@ class Decoder(StreamDecoder[_T_co]):
         errors: bool = False,
         lazy: Literal[False] = False,
         typed: None = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Union[AnyMessage, Item]]: ...
     @overload
     @deprecated("typed=True is the default: drop it")
@@ -66,6 +69,7 @@ class Decoder(StreamDecoder[_T_co]):
         lazy: Literal[False] = False,
         *,
         typed: Literal[True],
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Union[AnyMessage, Item]]: ...
     @overload
     @deprecated("lazy=True is deprecated: the default typed items read a field without a dict")
@@ -77,6 +81,7 @@ class Decoder(StreamDecoder[_T_co]):
         *,
         lazy: Literal[True],
         typed: Optional[Literal[False]] = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Item]: ...
     @overload
     def __new__(
@@ -86,6 +91,7 @@ class Decoder(StreamDecoder[_T_co]):
         errors: bool = False,
         lazy: bool = False,
         typed: Optional[bool] = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Union[AnyMessage, Item, _Dict]]: ...
 
 def encode(message: Mapping[str, Any], /) -> bytes:

@@ -1,7 +1,7 @@
 """Telemetrix4RpiPico: host commands and Pico reports (LEN, id, payload)."""
 
 import sys
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any, Literal, Optional, TypeVar, Union, final, overload
 
 from ._robowire import Item, StreamDecoder, _Dict, _Fields
@@ -40,6 +40,7 @@ class Decoder(StreamDecoder[_T_co]):
         lazy: Literal[False] = False,
         *,
         typed: Literal[False],
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[_Dict]: ...
     @overload
     def __new__(
@@ -50,6 +51,7 @@ class Decoder(StreamDecoder[_T_co]):
         errors: Literal[False] = False,
         lazy: Literal[False] = False,
         typed: None = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[AnyMessage]: ...
     @overload
     def __new__(
@@ -60,6 +62,7 @@ class Decoder(StreamDecoder[_T_co]):
         errors: bool = False,
         lazy: Literal[False] = False,
         typed: None = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Union[AnyMessage, Item]]: ...
     @overload
     @deprecated("typed=True is the default: drop it")
@@ -72,6 +75,7 @@ class Decoder(StreamDecoder[_T_co]):
         lazy: Literal[False] = False,
         *,
         typed: Literal[True],
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Union[AnyMessage, Item]]: ...
     @overload
     @deprecated("lazy=True is deprecated: the default typed items read a field without a dict")
@@ -84,6 +88,7 @@ class Decoder(StreamDecoder[_T_co]):
         *,
         lazy: Literal[True],
         typed: Optional[Literal[False]] = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Item]: ...
     @overload
     def __new__(
@@ -94,6 +99,7 @@ class Decoder(StreamDecoder[_T_co]):
         errors: bool = False,
         lazy: bool = False,
         typed: Optional[bool] = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Union[AnyMessage, Item, _Dict]]: ...
 
 def encode(message: Mapping[str, Any], /, dialect: _Dialect = "mirte13") -> bytes:

@@ -7,6 +7,7 @@ use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList, PyType};
 
 use crate::array::Tables;
+use crate::clock::Clock;
 use crate::engine::{detached_from_size, stats_dict, with_bytes, Engine, Form, Items};
 
 /// The stream decoder every protocol's ``Decoder`` is: feed it bytes as they
@@ -24,6 +25,12 @@ use crate::engine::{detached_from_size, stats_dict, with_bytes, Engine, Form, It
 /// never depend on how the bytes were split; call :meth:`finish` at the end of
 /// the input to resolve a frame cut short.
 ///
+/// Every constructor takes ``clock=``, a callable returning seconds
+/// (``time.monotonic``, ``time.time``, a simulation's clock): each call
+/// without a ``t`` then stamps its items with the clock's time, and
+/// :meth:`poll` reads it for ``now``. Without one, items carry a time only
+/// when the call gives it.
+///
 /// Construct a protocol's subclass (``robowire.omnitiles.Decoder``, ...), not
 /// this class.
 #[pyclass(module = "robowire", subclass, name = "StreamDecoder")]
@@ -37,40 +44,47 @@ pub struct PyStreamDecoder {
     /// (any clock) with the gap given per call, which `Idle`'s fixed
     /// integer ticks do not fit.
     held_since: Option<(f64, bool)>,
+    /// `clock=`: the receive time of calls without a `t`.
+    clock: Clock,
 }
 
 impl PyStreamDecoder {
-    /// A decoder around `engine`; `repr` is what `repr()` shows.
-    pub fn new(engine: Box<dyn Engine>, items: Items, repr: String) -> Self {
+    /// A decoder around `engine` stamping items by `clock`; `repr` is what
+    /// `repr()` shows, without the clock.
+    pub fn new(
+        engine: Box<dyn Engine>,
+        items: Items,
+        repr: String,
+        clock: Clock,
+        py: Python<'_>,
+    ) -> Self {
+        let repr = clock.in_repr(py, repr);
         Self {
             engine,
             items,
             repr,
             held_since: None,
+            clock,
         }
     }
 
-    /// After a chunk arrived at `t` (or now): the idle deadline runs from
-    /// it while bytes are held.
+    /// After a chunk arrived at `t` (given, or the clock's): the idle
+    /// deadline runs from it (else from `time.monotonic()`) while bytes are
+    /// held.
     fn received(&mut self, py: Python<'_>, t: Option<f64>) -> PyResult<()> {
         self.held_since = match (self.engine.buffered(), t) {
             (0, _) => None,
             (_, Some(t)) => Some((t, true)),
-            (_, None) => Some((monotonic(py)?, false)),
+            (_, None) => Some((self.clock.now(py)?, false)),
         };
         Ok(())
     }
-}
 
-/// Python's `time.monotonic()`, the clock `feed` and `poll` default to.
-fn monotonic(py: Python<'_>) -> PyResult<f64> {
-    static MONOTONIC: PyOnceLock<Py<PyAny>> = PyOnceLock::new();
-    MONOTONIC
-        .get_or_try_init(py, || {
-            Ok::<_, PyErr>(py.import("time")?.getattr("monotonic")?.unbind())
-        })?
-        .call0(py)?
-        .extract(py)
+    /// When the held bytes were fed, if that call had a time (`t=` or the
+    /// clock): the receive time of a frame they end.
+    fn held_time(&self) -> Option<f64> {
+        self.held_since.and_then(|(at, given)| given.then_some(at))
+    }
 }
 
 #[pymethods]
@@ -81,13 +95,18 @@ impl PyStreamDecoder {
     /// ``t``: the time the chunk was received (``time.monotonic()``, or any
     /// clock's seconds), which every item it returns carries as ``t`` (the
     /// first key of its dict form, as in the tool's lines); a frame cut
-    /// across chunks has the time of the chunk that completes it.
+    /// across chunks has the time of the chunk that completes it. Without
+    /// ``t``, a decoder constructed with ``clock=`` reads its clock once per
+    /// call. :meth:`finish`, :meth:`settle` and :meth:`poll` without a
+    /// ``t`` give a frame they resolve the time its last bytes were fed at,
+    /// where that call had one.
     #[pyo3(signature = (data, /, t = None))]
     fn feed<'py>(
         &mut self,
         data: &Bound<'py, PyAny>,
         t: Option<f64>,
     ) -> PyResult<Bound<'py, PyList>> {
+        let t = self.clock.stamp(data.py(), t)?;
         let out = PyList::empty(data.py());
         let items = Items { t, ..self.items };
         with_bytes(data, |bytes| self.engine.feed(bytes, items, &out))??;
@@ -141,6 +160,7 @@ impl PyStreamDecoder {
     /// stream; offsets and counters carry on.
     #[pyo3(signature = (t = None))]
     fn finish<'py>(&mut self, py: Python<'py>, t: Option<f64>) -> PyResult<Bound<'py, PyList>> {
+        let t = t.or(self.held_time());
         let out = PyList::empty(py);
         self.held_since = None;
         self.engine.finish(Items { t, ..self.items }, &out)?;
@@ -157,6 +177,7 @@ impl PyStreamDecoder {
     /// pass as a shorter frame.
     #[pyo3(signature = (t = None))]
     fn settle<'py>(&mut self, py: Python<'py>, t: Option<f64>) -> PyResult<Bound<'py, PyList>> {
+        let t = t.or(self.held_time());
         let out = PyList::empty(py);
         self.engine.settle(Items { t, ..self.items }, &out)?;
         Ok(out)
@@ -177,8 +198,9 @@ impl PyStreamDecoder {
         self.held_since.map(|(at, _)| at + idle)
     }
 
-    /// The idle deadline's check, sans-IO: at ``now`` (default
-    /// ``time.monotonic()``; the clock ``feed``'s ``t`` used), if
+    /// The idle deadline's check, sans-IO: at ``now`` (default: the
+    /// decoder's ``clock``, else ``time.monotonic()``; the clock ``feed``'s
+    /// ``t`` used), if
     /// :meth:`deadline` has passed, :meth:`settle` and return its items
     /// (with the last chunk's ``t`` when it was given one), once per
     /// silence; otherwise an empty list.
@@ -190,16 +212,16 @@ impl PyStreamDecoder {
         now: Option<f64>,
     ) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(py);
-        let Some((at, given)) = self.held_since else {
+        let Some((at, _)) = self.held_since else {
             return Ok(out);
         };
         let now = match now {
             Some(now) => now,
-            None => monotonic(py)?,
+            None => self.clock.now(py)?,
         };
         if now >= at + idle {
+            let t = self.held_time();
             self.held_since = None;
-            let t = given.then_some(at);
             self.engine.settle(Items { t, ..self.items }, &out)?;
         }
         Ok(out)

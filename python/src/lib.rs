@@ -7,6 +7,7 @@
 //! ([`typed`]).
 
 mod array;
+mod clock;
 mod columns;
 mod decoder;
 mod engine;

@@ -9,6 +9,7 @@ use robowire::omnitiles::{
 };
 use robowire::{Stats, StreamDecoder};
 
+use crate::clock::Clock;
 use crate::decoder::{generic_alias, not_copyable, PyStreamDecoder};
 use crate::engine::{
     append, bad_choice, encode_frame, encode_with, stats_dict, with_bytes, Engine, Form, Items,
@@ -132,13 +133,14 @@ pub struct OmniDecoder;
 #[pymethods]
 impl OmniDecoder {
     #[new]
-    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false, typed = None))]
+    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false, typed = None, clock = None))]
     fn new(
         source: &str,
         layouts: Option<&Bound<'_, PyAny>>,
         errors: bool,
         lazy: bool,
         typed: Option<bool>,
+        clock: Option<Bound<'_, PyAny>>,
         py: Python<'_>,
     ) -> PyResult<PyClassInitializer<Self>> {
         let engine: Box<dyn Engine> = match choose(source, layouts)? {
@@ -148,7 +150,7 @@ impl OmniDecoder {
         };
         let items = Items::new(py, errors, lazy, typed)?;
         let repr = describe("Decoder", source, layouts, items);
-        let base = PyStreamDecoder::new(engine, items, repr);
+        let base = PyStreamDecoder::new(engine, items, repr, Clock::new(clock)?, py);
         Ok(PyClassInitializer::from(base).add_subclass(OmniDecoder))
     }
 }
@@ -169,18 +171,20 @@ pub struct OmniDatagramDecoder {
     inner: Box<dyn Datagrams>,
     items: Items,
     repr: String,
+    clock: Clock,
 }
 
 #[pymethods]
 impl OmniDatagramDecoder {
     #[new]
-    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false, typed = None))]
+    #[pyo3(signature = (source = "any", layouts = None, errors = false, lazy = false, typed = None, clock = None))]
     fn new(
         source: &str,
         layouts: Option<&Bound<'_, PyAny>>,
         errors: bool,
         lazy: bool,
         typed: Option<bool>,
+        clock: Option<Bound<'_, PyAny>>,
         py: Python<'_>,
     ) -> PyResult<Self> {
         let inner: Box<dyn Datagrams> = match choose(source, layouts)? {
@@ -189,10 +193,13 @@ impl OmniDatagramDecoder {
             Choice::Any(f) => Box::new(DatagramDecoder::new(f)),
         };
         let items = Items::new(py, errors, lazy, typed)?;
+        let clock = Clock::new(clock)?;
+        let repr = describe("DatagramDecoder", source, layouts, items);
         Ok(Self {
             inner,
             items,
-            repr: describe("DatagramDecoder", source, layouts, items),
+            repr: clock.in_repr(py, repr),
+            clock,
         })
     }
 
@@ -205,6 +212,7 @@ impl OmniDatagramDecoder {
         datagram: &Bound<'py, PyAny>,
         t: Option<f64>,
     ) -> PyResult<Bound<'py, PyList>> {
+        let t = self.clock.stamp(datagram.py(), t)?;
         let out = PyList::empty(datagram.py());
         let items = Items { t, ..self.items };
         with_bytes(datagram, |bytes| self.inner.decode(bytes, items, &out))??;

@@ -7,6 +7,7 @@ use robowire::pixy2::{
 };
 use robowire::StreamDecoder;
 
+use crate::clock::Clock;
 use crate::decoder::PyStreamDecoder;
 use crate::engine::{bad_choice, encode_frame, encode_with, Engine, Items, Stream};
 
@@ -61,13 +62,14 @@ pub struct Pixy2Decoder;
 #[pymethods]
 impl Pixy2Decoder {
     #[new]
-    #[pyo3(signature = (source = "any", checksum_only = false, errors = false, lazy = false, typed = None))]
+    #[pyo3(signature = (source = "any", checksum_only = false, errors = false, lazy = false, typed = None, clock = None))]
     fn new(
         source: &str,
         checksum_only: bool,
         errors: bool,
         lazy: bool,
         typed: Option<bool>,
+        clock: Option<Bound<'_, PyAny>>,
         py: Python<'_>,
     ) -> PyResult<PyClassInitializer<Self>> {
         let engine = engine(source, checksum_only)?;
@@ -81,7 +83,7 @@ impl Pixy2Decoder {
             "robowire.pixy2.Decoder(source={source:?}{checksum_only}{})",
             items.describe()
         );
-        let base = PyStreamDecoder::new(engine, items, repr);
+        let base = PyStreamDecoder::new(engine, items, repr, Clock::new(clock)?, py);
         Ok(PyClassInitializer::from(base).add_subclass(Pixy2Decoder))
     }
 }

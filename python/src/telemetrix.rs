@@ -16,6 +16,7 @@ use robowire::telemetrix::{
 use robowire::{Stats, StreamDecoder};
 
 use crate::array::Tables;
+use crate::clock::Clock;
 use crate::decoder::PyStreamDecoder;
 use crate::engine::{append, bad_choice, decode_events, frames_decoded, Engine, Items, Resolve};
 
@@ -196,7 +197,9 @@ pub struct TmxDecoder;
 #[pymethods]
 impl TmxDecoder {
     #[new]
-    #[pyo3(signature = (source = "any", dialect = "mirte13", lenient = false, errors = false, lazy = false, typed = None))]
+    // The Python constructor's keyword options, one argument each.
+    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (source = "any", dialect = "mirte13", lenient = false, errors = false, lazy = false, typed = None, clock = None))]
     fn new(
         source: &str,
         dialect: &str,
@@ -204,6 +207,7 @@ impl TmxDecoder {
         errors: bool,
         lazy: bool,
         typed: Option<bool>,
+        clock: Option<Bound<'_, PyAny>>,
         py: Python<'_>,
     ) -> PyResult<PyClassInitializer<Self>> {
         let name = dialect;
@@ -231,7 +235,7 @@ impl TmxDecoder {
             "robowire.telemetrix.Decoder(source={source:?}, dialect={name:?}{lenient}{})",
             items.describe()
         );
-        let base = PyStreamDecoder::new(engine, items, repr);
+        let base = PyStreamDecoder::new(engine, items, repr, Clock::new(clock)?, py);
         Ok(PyClassInitializer::from(base).add_subclass(TmxDecoder))
     }
 }

@@ -68,7 +68,7 @@ def test_classes_and_docs() -> None:
         assert "ValueError" in (function.__doc__ or "")
     assert "chunk" in (robowire.StreamDecoder.feed.__doc__ or "")
     if sys.version_info >= (3, 10):  # PyO3 gives classes no text signature on 3.9
-        assert omnitiles.Decoder.__text_signature__ == '(source="any", layouts=None, errors=False, lazy=False, typed=None)'
+        assert omnitiles.Decoder.__text_signature__ == '(source="any", layouts=None, errors=False, lazy=False, typed=None, clock=None)'
     assert str(inspect.signature(telemetrix.encode)) == "(message, /, dialect='mirte13')"
     feed = inspect.signature(robowire.StreamDecoder.feed).parameters["data"]
     assert feed.kind is inspect.Parameter.POSITIONAL_ONLY

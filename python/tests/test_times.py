@@ -4,10 +4,11 @@
 from __future__ import annotations
 
 import pickle
+import time
 
 import pytest
 
-from robowire import omnitiles, telemetrix
+from robowire import omnitiles, pixy2, telemetrix
 
 from conftest import DATA
 
@@ -68,3 +69,68 @@ def test_items_with_a_time_encode_to_their_frame() -> None:
     decoder = omnitiles.Decoder(layouts="pos7")
     (telemetry,) = decoder.feed(POS7, t=9.0)
     assert omnitiles.encode(telemetry) == POS7
+
+
+class Ticks:
+    """A clock that says 10.0, 11.0, ... and counts its reads."""
+
+    def __init__(self) -> None:
+        self.reads = 0
+
+    def __call__(self) -> float:
+        self.reads += 1
+        return 9.0 + self.reads
+
+
+def test_a_clock_stamps_every_call_without_a_time() -> None:
+    clock = Ticks()
+    decoder = telemetrix.Decoder(source="pico", clock=clock)
+    reports = (DATA / "telemetrix_reports.bin").read_bytes()
+    first = decoder.feed(reports)
+    assert first and {r.t for r in first} == {10.0} and clock.reads == 1  # once per call
+    assert {r.t for r in decoder.feed(reports)} == {11.0}
+    assert {r.t for r in decoder.feed(reports, t=99.0)} == {99.0} and clock.reads == 2  # t wins
+    assert decoder.feed(b"") == [] and clock.reads == 3
+    (d,) = omnitiles.DatagramDecoder(source="tile", clock=Ticks()).decode(POS7)
+    assert d.t == 10.0
+    (p,) = pixy2.Decoder(source="device", clock=Ticks(), typed=False).feed(bytes.fromhex("af c1 21 00 00 00"))
+    assert list(p.items())[0] == ("t", 10.0)
+
+
+def test_a_settled_frame_has_the_time_its_bytes_came() -> None:
+    for given in ({"t": 3.0}, {}):
+        clock = Ticks()
+        decoder = omnitiles.Decoder(source="tile", clock=clock)
+        assert decoder.feed(POS7, **given) == []
+        expected = given.get("t", 10.0)
+        (t,) = decoder.settle()
+        assert t.t == expected
+        decoder.clear()
+        decoder.feed(POS7, **given)
+        assert [i.t for i in decoder.finish()] == [given.get("t", 11.0)]
+    # And without a clock, from the feed's t (it had none before).
+    decoder = omnitiles.Decoder(source="tile")
+    decoder.feed(POS7, t=5.0)
+    assert [i.t for i in decoder.settle()] == [5.0]
+
+
+def test_poll_reads_the_clock() -> None:
+    now = [100.0]
+    decoder = omnitiles.Decoder(source="tile", clock=lambda: now[0])
+    decoder.feed(POS7)
+    assert decoder.deadline(0.005) == 100.005
+    assert decoder.poll(0.005) == []
+    now[0] = 100.01
+    (frame,) = decoder.poll(0.005)
+    assert frame.t == 100.0
+
+
+def test_a_clock_must_be_callable_and_shows_in_repr() -> None:
+    with pytest.raises(TypeError, match="clock must be a callable"):
+        omnitiles.Decoder(clock=1.5)  # type: ignore[call-overload]
+    assert repr(telemetrix.Decoder(clock=time.monotonic)) == (
+        "robowire.telemetrix.Decoder(source=\"any\", dialect=\"mirte13\", clock=<built-in function monotonic>)"
+    )
+    assert repr(omnitiles.DatagramDecoder(source="tile", layouts=("pos7",), clock=time.time)).endswith(
+        "layouts=('pos7',), clock=<built-in function time>)"
+    )

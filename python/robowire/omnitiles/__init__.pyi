@@ -1,7 +1,7 @@
 """OmniTiles: host commands and tile telemetry (``a5``, id, payload, sum)."""
 
 import sys
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from typing import Any, ClassVar, Generic, Literal, Optional, TypedDict, TypeVar, Union, final, overload
 
 from .._robowire import Item, StreamDecoder, _Bytes, _Dict
@@ -157,6 +157,7 @@ class Decoder(StreamDecoder[_T_co]):
         errors: Literal[False] = False,
         lazy: Literal[False] = False,
         typed: None = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Telemetry]: ...
     @overload
     def __new__(
@@ -166,6 +167,7 @@ class Decoder(StreamDecoder[_T_co]):
         errors: bool = False,
         lazy: Literal[False] = False,
         typed: None = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Item]: ...
     @overload
     def __new__(
@@ -176,6 +178,7 @@ class Decoder(StreamDecoder[_T_co]):
         lazy: Literal[False] = False,
         *,
         typed: Literal[False],
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[_Dict]: ...
     @overload
     def __new__(
@@ -185,6 +188,7 @@ class Decoder(StreamDecoder[_T_co]):
         errors: bool = False,
         lazy: Literal[False] = False,
         typed: None = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Union[Telemetry, Item]]: ...
     @overload
     @deprecated("typed=True is the default: drop it")
@@ -196,6 +200,7 @@ class Decoder(StreamDecoder[_T_co]):
         lazy: Literal[False] = False,
         *,
         typed: Literal[True],
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Union[Telemetry, Item]]: ...
     @overload
     @deprecated("lazy=True is deprecated: the default typed items read a field without a dict")
@@ -207,6 +212,7 @@ class Decoder(StreamDecoder[_T_co]):
         *,
         lazy: Literal[True],
         typed: Optional[Literal[False]] = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Item]: ...
     @overload
     def __new__(
@@ -216,6 +222,7 @@ class Decoder(StreamDecoder[_T_co]):
         errors: bool = False,
         lazy: bool = False,
         typed: Optional[bool] = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> Decoder[Union[Telemetry, Item, _Dict]]: ...
 
 @final
@@ -231,6 +238,7 @@ class DatagramDecoder(Generic[_T_co]):
         errors: Literal[False] = False,
         lazy: Literal[False] = False,
         typed: None = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> DatagramDecoder[Telemetry]: ...
     @overload
     def __new__(
@@ -240,6 +248,7 @@ class DatagramDecoder(Generic[_T_co]):
         errors: bool = False,
         lazy: Literal[False] = False,
         typed: None = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> DatagramDecoder[Item]: ...
     @overload
     def __new__(
@@ -250,6 +259,7 @@ class DatagramDecoder(Generic[_T_co]):
         lazy: Literal[False] = False,
         *,
         typed: Literal[False],
+        clock: Optional[Callable[[], float]] = None,
     ) -> DatagramDecoder[_Dict]: ...
     @overload
     def __new__(
@@ -259,6 +269,7 @@ class DatagramDecoder(Generic[_T_co]):
         errors: bool = False,
         lazy: Literal[False] = False,
         typed: None = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> DatagramDecoder[Union[Telemetry, Item]]: ...
     @overload
     @deprecated("typed=True is the default: drop it")
@@ -270,6 +281,7 @@ class DatagramDecoder(Generic[_T_co]):
         lazy: Literal[False] = False,
         *,
         typed: Literal[True],
+        clock: Optional[Callable[[], float]] = None,
     ) -> DatagramDecoder[Union[Telemetry, Item]]: ...
     @overload
     @deprecated("lazy=True is deprecated: the default typed items read a field without a dict")
@@ -281,6 +293,7 @@ class DatagramDecoder(Generic[_T_co]):
         *,
         lazy: Literal[True],
         typed: Optional[Literal[False]] = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> DatagramDecoder[Item]: ...
     @overload
     def __new__(
@@ -290,6 +303,7 @@ class DatagramDecoder(Generic[_T_co]):
         errors: bool = False,
         lazy: bool = False,
         typed: Optional[bool] = None,
+        clock: Optional[Callable[[], float]] = None,
     ) -> DatagramDecoder[Union[Telemetry, Item, _Dict]]: ...
     def decode(self, datagram: _Bytes, /, t: Optional[float] = None) -> list[_T_co]:
         """The items of one datagram, in order."""

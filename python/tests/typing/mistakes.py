@@ -35,3 +35,4 @@ for p in pixy2.Decoder(source="device").feed(b""):
     width: int = p.width  # mistake: only a resolution response has a width
 omnitiles.Decoder(source="tile", typed=True)  # mistake: deprecated, typed items are the default
 telemetrix.Decoder(lazy=True)  # mistake: deprecated, items read a field without a dict
+pixy2.Decoder(clock=1.5)  # mistake: a clock is a callable that returns seconds

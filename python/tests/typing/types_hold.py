@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import time
 from collections.abc import Mapping
 from typing import Any, Optional, Union, assert_type
 
@@ -72,3 +73,7 @@ for f in sdk_frames:
     assert_type(f.m1_pos_mm, Optional[float])
     assert_type(f.m1_adcs, tuple[int, ...])
 assert_type(tile.settle(), list[omnitiles.Telemetry])
+
+# A receive-time clock, on every decoder.
+assert_type(telemetrix.Decoder(source="pico", clock=time.monotonic).feed(CHUNK), list[telemetrix.AnyMessage])
+assert_type(omnitiles.DatagramDecoder(source="tile", clock=lambda: 0.0).decode(CHUNK), list[omnitiles.Telemetry])
