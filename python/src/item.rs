@@ -98,6 +98,10 @@ pub struct Item {
     /// The fields that read as `None` as attributes when the frame lacks
     /// them (a message class's optional ones; none for a plain `Item`).
     optional: [&'static [&'static str]; 2],
+    /// A message class's `type`, as a Python string made once per class:
+    /// the commonest read (a dispatch on the type) needs no walk of the
+    /// frame.
+    kind: Option<&'static Py<PyString>>,
 }
 
 impl Item {
@@ -108,14 +112,22 @@ impl Item {
             t,
             dict: PyOnceLock::new(),
             optional: [&[], &[]],
+            kind: None,
         }
     }
 
-    /// The item with the fields `common` and `own` reading as `None` when
-    /// the frame lacks them.
-    pub fn optional(self, common: &'static [&'static str], own: &'static [&'static str]) -> Self {
+    /// The item of a message class: its `type` (`kind`, the frame's own)
+    /// and the fields `common` and `own` that read as `None` when the frame
+    /// lacks them.
+    pub fn classed(
+        self,
+        kind: &'static Py<PyString>,
+        common: &'static [&'static str],
+        own: &'static [&'static str],
+    ) -> Self {
         Self {
             optional: [common, own],
+            kind: Some(kind),
             ..self
         }
     }
@@ -152,8 +164,9 @@ impl Item {
         if let Some(dict) = self.dict.get(py) {
             return dict.bind(py).get_item(key);
         }
-        match (name, self.t) {
-            ("t", Some(t)) => Ok(Some(t.into_pyobject(py)?.into_any())),
+        match (name, self.t, self.kind) {
+            ("t", Some(t), _) => Ok(Some(t.into_pyobject(py)?.into_any())),
+            ("type", _, Some(kind)) => Ok(Some(kind.bind(py).clone().into_any())),
             _ => self.event.field(py, name),
         }
     }

@@ -14,7 +14,8 @@
 //! As keys they stay absent: the mapping is the frame's dict.
 
 use pyo3::prelude::*;
-use pyo3::types::PyType;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyString, PyType};
 
 use crate::item::Item;
 use crate::typed::untracked_init;
@@ -50,7 +51,9 @@ macro_rules! kinds {
             pub fn wrap<'py>(py: Python<'py>, name: &str, item: Item) -> PyResult<Bound<'py, PyAny>> {
                 match name {
                     $($name => {
-                        let item = item.optional(COMMON, &[$($($optional),*)?]);
+                        static KIND: PyOnceLock<Py<PyString>> = PyOnceLock::new();
+                        let kind = KIND.get_or_init(py, || PyString::intern(py, $name).unbind());
+                        let item = item.classed(kind, COMMON, &[$($($optional),*)?]);
                         let init = PyClassInitializer::from(item).add_subclass(Message);
                         untracked_init(py, init.add_subclass($class))
                     })*

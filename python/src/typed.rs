@@ -103,6 +103,9 @@ trait TypeName {
 }
 
 impl TypeName for robowire::telemetrix::MessageBuf {
+    // A parse of the frame: kept out of line, so that `typed` stays small
+    // enough for the engines' loops to inline (see `classed!`).
+    #[inline(never)]
     fn type_name(&self) -> &'static str {
         self.message().name()
     }
