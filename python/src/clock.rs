@@ -8,7 +8,6 @@ use pyo3::sync::PyOnceLock;
 /// A decoder's clock: the caller's callable, or none (items carry a time
 /// only when the call gives one; the idle deadline runs on
 /// `time.monotonic()`).
-#[derive(Default)]
 pub struct Clock(Option<Py<PyAny>>);
 
 impl Clock {

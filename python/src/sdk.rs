@@ -11,15 +11,15 @@
 //! at a chunk boundary and no stall on a stray 0xA5.
 
 use pyo3::basic::CompareOp;
-use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBytes, PyList, PyTuple};
 use robowire::omnitiles::units::ADC_FULL_SCALE;
 use robowire::omnitiles::{Framing, Host, Telemetry, HOST_BUFFER};
 use robowire::stream::OwnedFrame;
 use robowire::StreamDecoder;
 
+use crate::clock::Clock;
 use crate::engine::{decode_events, stats_dict, with_bytes, Resolve};
 use crate::typed::{compared, frame_bytes, hash_of, untracked, PyImu};
 
@@ -269,7 +269,8 @@ impl SdkTelemetry {
 #[pyclass(module = "robowire.omnitiles.sdk", name = "StreamParser")]
 pub struct StreamParser {
     decoder: StreamDecoder<Framing<Host>, HOST_BUFFER>,
-    clock: Py<PyAny>,
+    /// `clock=`, else `time.monotonic()` (`Clock::now`).
+    clock: Clock,
     scale: Scale,
 }
 
@@ -288,7 +289,7 @@ impl StreamParser {
     }
 
     fn now(&self, py: Python<'_>) -> PyResult<f64> {
-        self.clock.bind(py).call0()?.extract()
+        self.clock.now(py)
     }
 }
 
@@ -297,22 +298,12 @@ impl StreamParser {
     #[new]
     #[pyo3(signature = (clock = None, *, m1_stroke_mm = 150.0, m2_stroke_mm = 100.0, adc_max = f64::from(ADC_FULL_SCALE)))]
     fn new(
-        py: Python<'_>,
-        clock: Option<Py<PyAny>>,
+        clock: Option<Bound<'_, PyAny>>,
         m1_stroke_mm: f64,
         m2_stroke_mm: f64,
         adc_max: f64,
     ) -> PyResult<Self> {
-        static MONOTONIC: PyOnceLock<Py<PyAny>> = PyOnceLock::new();
-        let clock = match clock {
-            Some(clock) if clock.bind(py).is_callable() => clock,
-            Some(_) => {
-                return Err(PyTypeError::new_err(
-                    "clock must be a callable that returns seconds (time.monotonic)",
-                ))
-            }
-            None => MONOTONIC.import(py, "time", "monotonic")?.clone().unbind(),
-        };
+        let clock = Clock::new(clock)?;
         if adc_max.is_nan() || adc_max <= 0.0 {
             return Err(PyValueError::new_err("adc_max must be positive"));
         }
