@@ -729,6 +729,7 @@ fn module_data_is_typed_in_a_capture() {
 }
 
 /// The lines of a capture of commands, each annotated by what came before.
+/// Each message rebuilt from its frame and attribution gives the same line.
 fn capture_lines(bytes: &[u8]) -> Vec<String> {
     let mut decoder = device_decoder();
     let mut context = CaptureContext::new(decoder.framing());
@@ -737,9 +738,48 @@ fn capture_lines(bytes: &[u8]) -> Vec<String> {
         .map(|event| {
             let mut message = MessageBuf::from(event.unwrap().message);
             context.annotate(&mut message);
-            serde_json::to_string(&message).unwrap()
+            let line = serde_json::to_string(&message).unwrap();
+            assert_eq!(serde_json::to_string(&rebuilt(&message)).unwrap(), line);
+            line
         })
         .collect()
+}
+
+/// `message` again from its frame and its attribution alone.
+fn rebuilt(message: &MessageBuf) -> MessageBuf {
+    let again = MessageBuf::from_attribution(message.frame(), message.attribution()).unwrap();
+    assert_eq!(again.attribution(), message.attribution());
+    assert_eq!(again.frame(), message.frame());
+    again
+}
+
+#[test]
+fn a_message_rebuilt_from_its_attribution_reads_the_same() {
+    for &(dialect, host, frame, line) in CASES {
+        let message = read_in(line, dialect).unwrap();
+        let again = rebuilt(&message);
+        assert_eq!(again.is_command(), host, "{frame}");
+        assert_eq!(again.dialect(), dialect, "{frame}");
+        assert_eq!(again.to_string(), message.to_string(), "{frame}");
+        assert_eq!(serde_json::to_string(&again).unwrap(), line, "{frame}");
+    }
+    // Valid both ways: `also` is kept.
+    let mut context = CaptureContext::new(both_decoder().framing());
+    let mut message = MessageBuf::try_from(&hex("03 02 19 01")[..]).unwrap();
+    context.annotate(&mut message);
+    assert!(rebuilt(&message).also().is_some());
+    // Not one whole frame: refused.
+    let attribution = message.attribution();
+    for cut in [
+        &[][..],
+        &[0x03, 0x02, 0x19],
+        &[0x03, 0x02, 0x19, 0x01, 0x00],
+    ] {
+        assert!(
+            MessageBuf::from_attribution(cut, attribution).is_err(),
+            "{cut:?}"
+        );
+    }
 }
 
 /// Every subtype of the module data tables (Hiwonder servo, SSD1306): the

@@ -11,6 +11,7 @@ use pyo3::types::{PyDict, PyIterator, PyString, PyTuple, PyType};
 use robowire::stream::{OwnedFrame, Rejected};
 use serde::Serialize;
 
+use crate::compact::CompactMessage;
 use crate::engine::{timed_dict, to_python};
 use crate::kinds;
 use crate::pick::field;
@@ -78,6 +79,22 @@ impl Erased for Unpickled {
     }
 }
 
+/// What an [`Item`] holds: a Telemetrix message in place (the commonest
+/// item kept by the million: no allocation of its own), anything else boxed.
+enum Event {
+    Compact(CompactMessage),
+    Boxed(Box<dyn Erased>),
+}
+
+impl Event {
+    fn erased(&self) -> &dyn Erased {
+        match self {
+            Self::Compact(message) => message,
+            Self::Boxed(event) => event.as_ref(),
+        }
+    }
+}
+
 /// A decoded item that builds its dict only when it is first iterated or
 /// compared (a field read alone is made from the frame in Rust): what a
 /// decoder returns by default for every message without a class
@@ -91,7 +108,7 @@ impl Erased for Unpickled {
 /// only at :attr:`offset`, goes several times faster.
 #[pyclass(module = "robowire", name = "Item", frozen, mapping, subclass)]
 pub struct Item {
-    event: Box<dyn Erased>,
+    event: Event,
     /// The receive time, the dict's `"t"` (first) when there is one.
     t: Option<f64>,
     dict: PyOnceLock<Py<PyDict>>,
@@ -107,6 +124,15 @@ pub struct Item {
 impl Item {
     /// An item around `event`, received at `t` if the caller gave a time.
     pub fn new(event: Box<dyn Erased>, t: Option<f64>) -> Self {
+        Self::with(Event::Boxed(event), t)
+    }
+
+    /// An item around a Telemetrix message, received at `t`.
+    pub fn compact(message: CompactMessage, t: Option<f64>) -> Self {
+        Self::with(Event::Compact(message), t)
+    }
+
+    fn with(event: Event, t: Option<f64>) -> Self {
         Self {
             event,
             t,
@@ -134,7 +160,7 @@ impl Item {
 
     fn dict<'py>(&self, py: Python<'py>) -> PyResult<&Bound<'py, PyDict>> {
         let dict = self.dict.get_or_try_init(py, || {
-            let dict = timed_dict(py, self.t, self.event.to_python(py)?)?;
+            let dict = timed_dict(py, self.t, self.event.erased().to_python(py)?)?;
             Ok::<_, PyErr>(dict.cast_into::<PyDict>()?.unbind())
         })?;
         Ok(dict.bind(py))
@@ -167,7 +193,7 @@ impl Item {
         match (name, self.t, self.kind) {
             ("t", Some(t), _) => Ok(Some(t.into_pyobject(py)?.into_any())),
             ("type", _, Some(kind)) => Ok(Some(kind.bind(py).clone().into_any())),
-            _ => self.event.field(py, name),
+            _ => self.event.erased().field(py, name),
         }
     }
 }
@@ -177,7 +203,7 @@ impl Item {
     /// Offset of the item's first byte in the stream (no dict is built).
     #[getter]
     fn offset(&self) -> u64 {
-        self.event.offset()
+        self.event.erased().offset()
     }
 
     /// The item as a new plain dict in the JSON-lines schema.

@@ -9,6 +9,7 @@
 mod array;
 mod clock;
 mod columns;
+mod compact;
 mod decoder;
 mod engine;
 mod item;

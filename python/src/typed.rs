@@ -19,6 +19,7 @@ use robowire::omnitiles::{Imu, Message, Telemetry};
 use robowire::stream::OwnedFrame;
 use serde::Serialize;
 
+use crate::compact::CompactMessage;
 use crate::engine::{encode_frame, timed_dict, to_python};
 use crate::item::Item;
 use crate::kinds;
@@ -138,32 +139,52 @@ impl<B: TypeName> TypeName for robowire::pixy2::Envelope<B> {
     }
 }
 
-/// Messages with a class per `type`: each item in its type's class of
-/// the protocol (`wrap`).
+/// The item of `frame` with the whole frame boxed, and its `type`. Inlined
+/// into `append`, the frame moves once, into its box: a call would copy the
+/// few hundred bytes of a `ResponseBuf` again.
+#[inline(always)]
+fn boxed<M: TypeName + Serialize + Send + Sync + 'static>(
+    frame: OwnedFrame<M>,
+    t: Option<f64>,
+) -> (&'static str, Item) {
+    let frame = Box::new(frame);
+    (frame.message.type_name(), Item::new(frame, t))
+}
+
+/// The item of a Telemetrix `frame`, kept in a few bytes in the item
+/// ([`CompactMessage`]), and its `type`.
+#[inline(always)]
+fn compact(
+    frame: OwnedFrame<robowire::telemetrix::MessageBuf>,
+    t: Option<f64>,
+) -> (&'static str, Item) {
+    let item = Item::compact(CompactMessage::new(&frame), t);
+    (frame.message.type_name(), item)
+}
+
+/// Messages with a class per `type`: each item (made by `$keep`) in its
+/// type's class of the protocol (`$wrap`).
 macro_rules! classed {
-    ($($message:ty => $wrap:path),* $(,)?) => {$(
+    ($($message:ty => $wrap:path, $keep:ident;)*) => {$(
         impl Typed for $message {
-            // Inlined into `append`, the frame moves once, into its box: a
-            // call would copy the few hundred bytes of a `MessageBuf` again.
             #[inline(always)]
             fn typed(
                 py: Python<'_>,
                 frame: OwnedFrame<Self>,
                 t: Option<f64>,
             ) -> PyResult<Bound<'_, PyAny>> {
-                let frame = Box::new(frame);
-                let name = frame.message.type_name();
-                $wrap(py, name, Item::new(frame, t))
+                let (name, item) = $keep(frame, t);
+                $wrap(py, name, item)
             }
         }
     )*};
 }
 
 classed!(
-    robowire::telemetrix::MessageBuf => kinds::telemetrix::wrap,
-    robowire::pixy2::Envelope<robowire::pixy2::ResponseBuf> => kinds::pixy2::wrap,
-    robowire::pixy2::Envelope<robowire::pixy2::Request> => kinds::pixy2::wrap,
-    robowire::pixy2::Envelope<robowire::pixy2::MessageBuf> => kinds::pixy2::wrap,
+    robowire::telemetrix::MessageBuf => kinds::telemetrix::wrap, compact;
+    robowire::pixy2::Envelope<robowire::pixy2::ResponseBuf> => kinds::pixy2::wrap, boxed;
+    robowire::pixy2::Envelope<robowire::pixy2::Request> => kinds::pixy2::wrap, boxed;
+    robowire::pixy2::Envelope<robowire::pixy2::MessageBuf> => kinds::pixy2::wrap, boxed;
 );
 
 /// The answer of `__richcmp__` for `op` when the items are `equal` (`None`:

@@ -178,6 +178,26 @@ def test_other_messages_are_items_with_attributes() -> None:
     assert ping.type == "ping"
 
 
+def test_telemetrix_items_keep_frames_of_every_length_and_their_attribution() -> None:
+    # An item keeps a short frame in place and a long one on the heap: I2C
+    # read reports of 8 to 64 bytes cross the limit. A frame valid both ways
+    # keeps `also`, and MODULE_DATA the module type an earlier MODULE_NEW gave.
+    frames = [
+        telemetrix.encode({"type": "i2c_read_report", "port": 0, "msg_id": 3, "reg": 117, "data": list(range(n))})
+        for n in range(1, 58)
+    ]
+    data = bytes.fromhex("03 02 19 01") + b"".join(frames)
+    items = telemetrix.Decoder(source="any").feed(data)
+    dicts = telemetrix.Decoder(source="any", typed=False).feed(data)
+    assert len(items) == 58 and items == dicts and [i.to_dict() for i in items] == dicts
+    assert items[0].also == "digital_write"
+    for item, frame in zip(items[1:], frames):
+        assert len(item.data) == frame[5] and telemetrix.encode(item) == frame
+    capture = bytes.fromhex("0A 21 01 00 01 00 01 00 02 01 02 09 22 00 01 01 00 2E E0 01 F4")
+    (_, angle) = telemetrix.Decoder(source="host").feed(capture)
+    assert (angle.module_type, angle.message["subtype"]) == ("hiwonder_servo", "set_angle")
+
+
 def test_typed_items_encode_back() -> None:
     data = CASES[0].input()
     for item in omnitiles.Decoder().feed(data):

@@ -12,7 +12,7 @@ use super::error::Error;
 use super::module::{ModuleCommand, ModuleType};
 use super::quirk::{command_quirk, report_quirk, Quirk};
 use super::report::{parse_report_with, Report};
-use super::wire::report_known;
+use super::wire::{report_known, split_frame};
 use super::wire::{MAX_COMMAND_FRAME, MAX_FRAME_LEN, MAX_REPORT_FRAME};
 use crate::{Encode, EncodeError};
 
@@ -316,6 +316,33 @@ enum Direction {
     Report,
 }
 
+/// How a [`MessageBuf`] reads its frame: everything it keeps beside the
+/// bytes (the dialect, leniency, direction, [`also`](MessageBuf::also) and
+/// [`module_type`](MessageBuf::module_type)). With the frame's bytes it is the
+/// whole message in a few bytes, for a host that keeps many messages: a
+/// `MessageBuf` has room for the longest frame, 256 bytes, where most are 4
+/// to 6. [`MessageBuf::from_attribution`] gives the message back.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Attribution {
+    dialect: Dialect,
+    lenient: bool,
+    direction: Direction,
+    also: bool,
+    module_type: Option<ModuleType>,
+}
+
+impl Attribution {
+    /// The dialect the frame is read in.
+    pub const fn dialect(&self) -> Dialect {
+        self.dialect
+    }
+
+    /// Whether the frame is attributed to the host (a command).
+    pub const fn is_command(&self) -> bool {
+        matches!(self.direction, Direction::Command)
+    }
+}
+
 /// An owned [`Message`]: the bytes of one frame, the direction it is read
 /// in, and what a [`CaptureContext`](super::CaptureContext) found out about
 /// it: whether the frame is valid the other way too ([`also`](Self::also)),
@@ -357,6 +384,48 @@ impl MessageBuf {
             Message::Report(_) => Direction::Report,
         };
         Ok(Self::with(frame, dialect, false, direction))
+    }
+
+    /// How the frame is read: with [`frame`](Self::frame), all of the
+    /// message (see [`Attribution`]).
+    pub const fn attribution(&self) -> Attribution {
+        Attribution {
+            dialect: self.dialect,
+            lenient: self.lenient,
+            direction: self.direction,
+            also: self.also,
+            module_type: self.module_type,
+        }
+    }
+
+    /// The message of `frame` read as `attribution` says: the
+    /// [`frame`](Self::frame) and [`attribution`](Self::attribution) of a
+    /// `MessageBuf` give it back. `frame` must be one whole frame (its `LEN`
+    /// byte, an id and `LEN` − 1 bytes more; else [`Error::BadLength`] or
+    /// [`Error::Truncated`]); its content is read as the
+    /// `MessageBuf` it came from read it, without a new check.
+    ///
+    /// ```
+    /// use robowire::telemetrix::{Message, MessageBuf, Report};
+    ///
+    /// let analog = MessageBuf::try_from(&[0x04, 0x03, 0x1A, 0x01, 0xF4][..])?;
+    /// let (frame, attribution) = (analog.frame().to_vec(), analog.attribution());
+    /// let again = MessageBuf::from_attribution(&frame, attribution)?;
+    /// assert_eq!(again, analog);
+    /// assert!(matches!(again.message(), Message::Report(Report::Analog { pin: 26, value: 500 })));
+    /// # Ok::<(), robowire::telemetrix::Error>(())
+    /// ```
+    pub fn from_attribution(frame: &[u8], attribution: Attribution) -> Result<Self, Error> {
+        split_frame(frame)?;
+        let mut message = Self::with(
+            frame,
+            attribution.dialect,
+            attribution.lenient,
+            attribution.direction,
+        );
+        message.also = attribution.also;
+        message.module_type = attribution.module_type;
+        Ok(message)
     }
 
     /// The message, in the direction the frame is attributed to.

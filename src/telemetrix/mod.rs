@@ -31,7 +31,10 @@
 //! indices, fewer on a 32-bit target): `size_of::<HostDecoder>()` is 360
 //! bytes, `size_of::<DeviceDecoder>()` 136, `size_of::<BothDecoder>()` and
 //! `size_of::<LenientHostDecoder>()` 616. The owned forms hold a whole frame:
-//! `CommandBuf` 32 bytes, `ReportBuf` 258, `MessageBuf` 261.
+//! `CommandBuf` 32 bytes, `ReportBuf` 258, `MessageBuf` 261. To keep many
+//! messages in little memory, keep each `MessageBuf`'s frame and its
+//! [`Attribution`] (a few bytes), and [`MessageBuf::from_attribution`] gives
+//! the message back.
 //!
 //! Messages borrow their variable byte fields (I2C/SPI data, feature
 //! extras, module data, servo positions) from the frame or the caller;
@@ -295,7 +298,7 @@ mod sensor;
 mod table;
 mod wire;
 
-pub use buf::{CommandBuf, Message, MessageBuf, ReportBuf};
+pub use buf::{Attribution, CommandBuf, Message, MessageBuf, ReportBuf};
 pub use command::{
     Command, EncoderKind, ModifyReporting, PinMode, Pull, Pulls, PwmPin, PwmPins, Rgb,
 };
