@@ -649,20 +649,25 @@ fn an_idle_gap_is_a_number_of_milliseconds_on_a_port() {
     let dir = scratch("idle-options");
     let file = dir.join("pos7.bin");
     std::fs::write(&file, [0xa5, 0x60, 0xd0, 0x07, 0xe8, 0x03, 0x22]).unwrap();
-    let out = run(
-        &["decode", "omnitiles", "--idle", "3", file.to_str().unwrap()],
-        b"",
-    );
-    assert_eq!(out.code, 2);
-    assert!(out
-        .stderr
-        .contains("--idle is the silence on a live port: it needs --port"));
-    for bad in ["-1", "NaN", "inf"] {
+    // From a file and from stdin alike.
+    for args in [
+        &["decode", "omnitiles", "--idle", "3", file.to_str().unwrap()][..],
+        &["decode", "omnitiles", "--idle", "3"],
+    ] {
+        let out = run(args, b"");
+        assert_eq!(out.code, 2);
+        assert!(out
+            .stderr
+            .contains("--idle is the silence on a live port: it needs --port"));
+    }
+    for bad in ["-1", "NaN", "inf", "soon"] {
         let arg = format!("--idle={bad}");
         let out = run(&["decode", "omnitiles", "--port", "/dev/null", &arg], b"");
         assert_eq!(out.code, 2, "{bad}: {}", out.stderr);
         assert!(
-            out.stderr.contains("must be a number from 0"),
+            out.stderr.contains(&format!(
+                "invalid value '{bad}' for '--idle <MS>': the milliseconds of silence must be a number from 0"
+            )),
             "{}",
             out.stderr
         );

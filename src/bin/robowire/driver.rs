@@ -111,13 +111,16 @@ impl DecodeCommon {
     /// The input, as raw bytes or (with `--hex`) hex text, from a file, stdin
     /// or (with `--port`) a serial port.
     pub fn source(&self) -> Result<Box<dyn ByteSource>, Failure> {
+        // Checked here, not with clap's `requires = "port"`: clap drops a
+        // requirement on an argument that conflicts with one given, and
+        // `--port` conflicts with INPUT, so `--idle 3 FILE` would pass.
         if self.live.idle.is_some() && self.live.port.is_none() {
             return Err(Failure::Invalid(
                 "--idle is the silence on a live port: it needs --port".to_owned(),
             ));
         }
         if let Some(device) = &self.live.port {
-            let idle = self.live.idle_gap()?;
+            let idle = self.live.idle_gap();
             return Ok(Box::new(PortSource::open(device, self.live.baud, idle)?));
         }
         let input = Input::open(self.input.as_deref())?;

@@ -73,22 +73,32 @@ pub struct LiveArgs {
     /// plus 3.5 byte-times at --baud, covers a USB serial adapter's
     /// latency on most hosts; an FTDI adapter at its default 16 ms latency
     /// needs 20. 0 waits for the next frame instead.
-    #[arg(long, value_name = "MS", display_order = 12)]
+    #[arg(
+        long,
+        value_name = "MS",
+        value_parser = parse_idle,
+        display_order = 12
+    )]
     pub idle: Option<f64>,
+}
+
+/// `--idle MS`: a finite number of milliseconds from 0.
+fn parse_idle(text: &str) -> Result<f64, String> {
+    text.parse::<f64>()
+        .ok()
+        .filter(|ms| ms.is_finite() && *ms >= 0.0)
+        .ok_or_else(|| "the milliseconds of silence must be a number from 0".to_owned())
 }
 
 impl LiveArgs {
     /// The idle gap of a live port at `--baud` (`None`: `--idle 0`).
-    pub fn idle_gap(&self) -> Result<Option<Duration>, Failure> {
+    pub fn idle_gap(&self) -> Option<Duration> {
         match self.idle {
-            Some(ms) if !(ms.is_finite() && ms >= 0.0) => Err(Failure::Invalid(format!(
-                "--idle {ms}: the milliseconds of silence must be a number from 0"
-            ))),
-            Some(0.0) => Ok(None),
-            Some(ms) => Ok(Some(Duration::from_secs_f64(ms / 1000.0))),
+            Some(0.0) => None,
+            Some(ms) => Some(Duration::from_secs_f64(ms / 1000.0)),
             None => {
                 let bytes = robowire::Idle::at_baud(self.baud, 3.5).gap();
-                Ok(Some(ADAPTER_LATENCY + Duration::from_micros(bytes)))
+                Some(ADAPTER_LATENCY + Duration::from_micros(bytes))
             }
         }
     }
