@@ -198,6 +198,21 @@ def test_telemetrix_items_keep_frames_of_every_length_and_their_attribution() ->
     assert (angle.module_type, angle.message["subtype"]) == ("hiwonder_servo", "set_angle")
 
 
+@pytest.mark.skipif(not Path("/proc/self/statm").exists(), reason="reads the resident size from /proc")
+def test_a_kept_telemetrix_report_costs_little_memory() -> None:
+    # docs/python.md: about 150 B a kept report (428 B when each held the
+    # library's 256-byte MessageBuf). Resident pages grown per item kept.
+    def resident() -> int:
+        return int(Path("/proc/self/statm").read_text().split()[1]) * 4096
+
+    data = bytes.fromhex("04 03 1a 04 c9 05 0b 09 0a 00 77 03 02 19 01") * 40_000
+    gc.collect()
+    before = resident()
+    items = telemetrix.Decoder(source="pico").feed(data)
+    grown = (resident() - before) / len(items)
+    assert len(items) == 120_000 and grown < 250, f"{grown:.0f} B per kept report"
+
+
 def test_typed_items_encode_back() -> None:
     data = CASES[0].input()
     for item in omnitiles.Decoder().feed(data):
