@@ -80,7 +80,8 @@ impl Erased for Unpickled {
 }
 
 /// What an [`Item`] holds: a Telemetrix message in place (the commonest
-/// item kept by the million: no allocation of its own), anything else boxed.
+/// item kept by the million; a short frame needs no allocation of its own),
+/// anything else boxed.
 enum Event {
     Compact(CompactMessage),
     Boxed(Box<dyn Erased>),
