@@ -105,7 +105,7 @@ trait TypeName {
 
 impl TypeName for robowire::telemetrix::MessageBuf {
     // A parse of the frame: kept out of line, so that `typed` stays small
-    // enough for the engines' loops to inline (see `classed!`).
+    // enough for the engines' loops to inline (see `compact`).
     #[inline(never)]
     fn type_name(&self) -> &'static str {
         self.message().name()
